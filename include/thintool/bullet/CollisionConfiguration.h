@@ -1,0 +1,89 @@
+// SPDX-License-Identifier: Zlib
+// Copyright (c) 2026 The ThinTool developers
+#pragma once
+
+/// @file
+/// The drop-in: a collision configuration that routes soft-body pairs with registered tools to
+/// ThinTool and leaves every other pair to Bullet's stock algorithms.
+///
+/// Use it where btSoftBodyRigidBodyCollisionConfiguration was used, then register tools:
+///
+///     thintool::CollisionConfiguration configuration;       // same construction info as stock
+///     btCollisionDispatcher dispatcher(&configuration);
+///     btSoftRigidDynamicsWorld world(&dispatcher, ...);
+///     ...
+///     thintool::Tool& spatula = thintool::addTool(world, spatulaBody);
+///     world.stepSimulation(dt, 1, dt);
+///     const thintool::ToolStepReport& report = spatula.report();
+///
+/// Threads: like Bullet's stock soft–rigid handler, ThinTool writes into the soft body while the
+/// dispatcher runs; use the single-threaded btCollisionDispatcher.
+
+#include <thintool/bullet/Tool.h>
+
+#include <BulletSoftBody/btSoftBodyRigidBodyCollisionConfiguration.h>
+
+#include <cstdint>
+#include <memory>
+#include <unordered_map>
+
+class btCollisionAlgorithm;
+class btCollisionObject;
+class btCollisionWorld;
+class btRigidBody;
+struct btCollisionObjectWrapper;
+struct btCollisionAlgorithmConstructionInfo;
+
+namespace thintool {
+
+class CollisionConfiguration;
+Tool& addTool(btCollisionWorld& world, btRigidBody& body, const ToolOptions& options);
+bool removeTool(btCollisionWorld& world, const btRigidBody& body);
+
+class CollisionConfiguration : public btSoftBodyRigidBodyCollisionConfiguration {
+ public:
+  /// Grows info's m_customCollisionAlgorithmMaxElementSize to fit ThinTool's algorithm: Bullet's
+  /// pool only asserts the size, so a release build would overrun its slots otherwise.
+  explicit CollisionConfiguration(const btDefaultCollisionConstructionInfo& info = btDefaultCollisionConstructionInfo());
+  ~CollisionConfiguration() override;
+
+  // See: btSoftBodyRigidBodyCollisionConfiguration::getCollisionAlgorithmCreateFunc
+  btCollisionAlgorithmCreateFunc* getCollisionAlgorithmCreateFunc(int proxyType0, int proxyType1) override;
+
+  /// The tool registered for object, or nullptr.
+  Tool* findTool(const btCollisionObject& object) const;
+  std::size_t toolCount() const { return m_tools.size(); }
+
+ private:
+  // Registration goes through thintool::addTool/removeTool, which also re-route the body's
+  // existing pairs; the configuration alone cannot reach the broadphase.
+  friend Tool& addTool(btCollisionWorld&, btRigidBody&, const ToolOptions&);
+  friend bool removeTool(btCollisionWorld&, const btRigidBody&);
+  Tool& addTool(btRigidBody& body, const ToolOptions& options);
+  bool removeTool(const btRigidBody& body);
+
+  struct CreateFunc;
+  btCollisionAlgorithm* createAlgorithm(btCollisionAlgorithmConstructionInfo& info, const btCollisionObjectWrapper* body0,
+                                        const btCollisionObjectWrapper* body1, bool swapped,
+                                        btCollisionAlgorithmCreateFunc& stock);
+  std::unordered_map<const btCollisionObject*, std::unique_ptr<Tool>> m_tools;
+  std::uint64_t m_toolsCreated = 0;
+  std::unique_ptr<CreateFunc> m_createFunc;
+  std::unique_ptr<CreateFunc> m_swappedCreateFunc;
+};
+
+/// Registers body as a thin tool of world, whose dispatcher must have been built with a
+/// thintool::CollisionConfiguration. Builds the tool model from the body's shape: btBoxShape,
+/// btConvexHullShape, any other convex shape through the hull of its support points, and each
+/// convex child of a btCompoundShape. The body stays awake (DISABLE_DEACTIVATION), since a
+/// sleeping tool's pairs are not processed. Throws thintool::Error naming the tool and the problem.
+Tool& addTool(btCollisionWorld& world, btRigidBody& body, const ToolOptions& options = ToolOptions());
+
+/// Unregisters body from world's configuration; returns whether it was a tool. Call it before
+/// deleting a tool's body.
+bool removeTool(btCollisionWorld& world, const btRigidBody& body);
+
+/// The tool registered for body, or nullptr.
+Tool* findTool(btCollisionWorld& world, const btRigidBody& body);
+
+}  // namespace thintool

@@ -1,0 +1,100 @@
+// SPDX-License-Identifier: Zlib
+// Copyright (c) 2026 The ThinTool developers
+#pragma once
+
+/// @file
+/// A registered tool: its model, its state across steps, and what happened in the latest step.
+
+#include <thintool/bullet/ToolOptions.h>
+#include <thintool/detection/Detection.h>
+#include <thintool/response/Response.h>
+#include <thintool/tool/ToolModel.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+class btRigidBody;
+class btSoftBody;
+
+namespace thintool {
+
+/// A contact of the latest step, with the soft body and tool piece it belongs to.
+struct ToolContact {
+  const btSoftBody* softBody = nullptr;
+  Index piece = 0;  ///< child of a compound tool; 0 otherwise
+  Contact contact;
+};
+
+struct ToolDiagnostics {
+  DetectionCounters detection;  ///< summed over the tool's pieces and soft bodies
+  Index pairs = 0;              ///< (piece, soft body) pairs processed in the step
+  Index nodesMoved = 0;         ///< soft nodes the response moved
+  /// Deepest any contacted soft face still lies inside the tool after the step's solve (m):
+  /// what the soft solver's links and pressure pushed back in. Measured when the report is read.
+  Real maxRemainingPenetration = 0;
+  double detectionMicroseconds = 0;
+  double responseMicroseconds = 0;
+  /// Pairs handed to Bullet's stock handler because their world's soft solver is not the
+  /// classic one (btDeformableMultiBodyDynamicsWorld is not supported yet).
+  Index unsupportedPairs = 0;
+  /// Soft nodes whose correction was not finite and was not written (never expected).
+  Index rejectedCorrections = 0;
+  /// Pairs skipped because the tool's transform was not finite.
+  Index invalidPosePairs = 0;
+};
+
+struct ToolStepReport {
+  std::vector<ToolContact> contacts;
+  ToolDiagnostics diagnostics;
+  /// Force (N) and torque about the tool body's origin (N·m) the response put on the tool.
+  Wrench wrench;
+};
+
+class CollisionConfiguration;
+
+namespace detail {
+struct PairState;
+class ToolAlgorithm;
+}  // namespace detail
+
+/// Created by addTool(); owned by the world's thintool::CollisionConfiguration.
+class Tool {
+ public:
+  Tool(btRigidBody& body, const ToolOptions& options, std::vector<ToolModel> pieces,
+       std::vector<Pose> pieceTransforms);
+  ~Tool();
+  Tool(const Tool&) = delete;
+  Tool& operator=(const Tool&) = delete;
+
+  const std::string& name() const { return m_options.name; }
+  btRigidBody& body() const { return m_body; }
+  const ToolOptions& options() const { return m_options; }
+
+  /// Convex pieces: one for a convex shape, one per child for a btCompoundShape.
+  Index pieceCount() const { return static_cast<Index>(m_pieces.size()); }
+  const ToolModel& piece(Index i) const { return m_pieces[i]; }
+  /// A piece's frame in the body's frame (identity but for compound children).
+  const Pose& pieceTransform(Index i) const { return m_pieceTransforms[i]; }
+  Index nodeCount() const;
+
+  /// Contacts, diagnostics and wrench of the latest simulation step. Read it after
+  /// stepSimulation() returns; the reference stays valid until the next call.
+  const ToolStepReport& report();
+
+ private:
+  friend class detail::ToolAlgorithm;
+  friend class CollisionConfiguration;
+  detail::PairState& pairState(btSoftBody& softBody, Index piece);
+
+  btRigidBody& m_body;
+  ToolOptions m_options;
+  std::vector<ToolModel> m_pieces;
+  std::vector<Pose> m_pieceTransforms;
+  std::vector<std::unique_ptr<detail::PairState>> m_pairs;
+  DetectionWorkspace m_detectionWorkspace;
+  ResponseWorkspace m_responseWorkspace;
+  ToolStepReport m_report;
+};
+
+}  // namespace thintool

@@ -1,0 +1,46 @@
+// SPDX-License-Identifier: Zlib
+// Copyright (c) 2026 The ThinTool developers
+#pragma once
+
+/// @file
+/// Everything a tool can be told, grouped by pipeline stage. The defaults suit the paper's scene
+/// (a 0.8 × 0.02 × 0.8 m plate into a 128-face ball of radius 1 m) and scale with the tool's size.
+
+#include <thintool/detection/Detection.h>
+#include <thintool/response/Response.h>
+#include <thintool/tool/ToolModel.h>
+
+#include <string>
+
+namespace thintool {
+
+struct ToolOptions {
+  /// Names the tool in error messages and reports; empty picks "tool <n>".
+  std::string name;
+
+  SamplingSettings sampling;
+  AssociationSettings association;
+  /// Deepest a soft face is looked for below a tool node (m, >= 0); 0 picks the tool's thickness.
+  Real probeDepth = 0;
+  /// Contact margin kept between the tool's faces and the soft surface (m). Negative uses each
+  /// soft body's own collision margin (btSoftBody::getCollisionShape()->getMargin()), as Bullet's
+  /// stock soft–rigid contact does.
+  Real skin = -1;
+
+  FilterSettings filters;
+  ResponseSettings response;
+
+  /// The paper's Fig. 7 (right) ablation: rays only, without association and both checks.
+  static ToolOptions rayOnly() {
+    ToolOptions options;
+    options.association.enabled = false;
+    options.filters.check1 = false;
+    options.filters.check2 = false;
+    return options;
+  }
+};
+
+/// Describes the first invalid option, or returns an empty string.
+std::string validateToolOptions(const ToolOptions& options);
+
+}  // namespace thintool

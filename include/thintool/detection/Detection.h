@@ -1,0 +1,119 @@
+// SPDX-License-Identifier: Zlib
+// Copyright (c) 2026 The ThinTool developers
+#pragma once
+
+/// @file
+/// Per-step detection between one tool piece and the soft faces near it.
+///
+/// Source: Fazioli et al. (the paper) §III.B, after Fukuhara et al. (2014), and the inward-ray
+/// rule of Hermann, Faure & Raffin, "Ray-traced collision detection for deformable bodies" (2008).
+/// Each tool node casts a segment along its inward normal, from the skin (the soft body's contact
+/// margin) in front of its face down to its probe length inside the piece. The closest soft face
+/// the segment meets is the node's candidate; its depth t is how far that face lies inside the
+/// tool's surface. Two filters, using the previous step, drop unfeasible candidates:
+/// - check 1: a node one of whose opposite nodes collided in the previous step is excluded when
+///   its ray finds a face (the piece is immersed and the face came in from the other side);
+/// - check 2: the candidate face must face the node (the dot product of the tool face's and the
+///   soft face's outward normals is negative, so the node lies behind that face, inside the soft
+///   body) and the reverse ray, cast outwards from the node, must hit the soft surface as well.
+/// Deviations: the paper does not say which normals check 2 compares or how long its rays are;
+/// we compare the two faces in contact and bound the forward ray by the piece's width, which is
+/// what makes a thin piece's two sides see the same soft face only when the face is inside it.
+/// Soft faces are visited once each, and only the rays whose boxes they overlap are tested
+/// (ToolModel::rayTree), so the cost follows the contact region, not the soft body's size.
+
+#include <thintool/detection/SoftPatch.h>
+#include <thintool/tool/ToolModel.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace thintool {
+
+/// The filters of §III.B, switchable per tool; a filter that is off costs nothing.
+struct FilterSettings {
+  /// Check 1, from the previous step's collisions across the tool. Needs association.
+  bool check1 = true;
+  /// Check 2, from the orientation of the soft face and a reverse ray.
+  bool check2 = true;
+  /// Check 2 also casts the reverse ray (a long ray; the orientation test alone is cheap).
+  bool reverseRay = true;
+  /// Length of the reverse ray (m, >= 0); 0 uses the soft body's bounding-box diagonal.
+  Real reverseRayLength = 0;
+};
+
+/// Per-step parameters, resolved by the glue for one soft body.
+struct DetectionParameters {
+  Real skin = 0;          ///< contact margin in front of the tool's faces (m, >= 0)
+  FilterSettings filters; ///< with reverseRayLength resolved to a length > 0
+};
+
+/// One colliding tool node and the soft face it found.
+struct Contact {
+  Index toolNode = kInvalidIndex;
+  Index patchFace = kInvalidIndex;  ///< index in SoftPatch::faces
+  Index softFace = kInvalidIndex;   ///< index in the soft body
+  Vec3 barycentric;  ///< weights of the face's three nodes at the hit point
+  Real depth = 0;    ///< how far the soft face lies inside the tool's surface (m); negative: in the skin only
+  Vec3 normal;       ///< world, unit, out of the tool on the side the face came from
+  Vec3 point;        ///< world, where the node's ray meets the soft face
+};
+
+struct DetectionCounters {
+  Index facesGathered = 0;   ///< soft faces in the patch
+  Index nodesTested = 0;     ///< tool nodes whose ray was tested against at least one face
+  Index triangleTests = 0;   ///< segment–triangle tests run
+  Index candidates = 0;      ///< nodes whose ray found a face
+  Index colliding = 0;
+  Index excludedByCheck1 = 0;
+  Index excludedByCheck2 = 0;
+  Index skippedFaces = 0;    ///< faces with non-finite coordinates, left out
+  Real maxDepth = 0;         ///< deepest accepted contact (m), 0 without contacts
+
+  void accumulate(const DetectionCounters& o);
+};
+
+/// What one (tool piece, soft body) pair carries from one step to the next: the nodes check 1
+/// blocks, i.e. the opposites of the nodes that collided (the paper's "vector of indices that
+/// cannot collide in the current simulation step").
+class PairHistory {
+ public:
+  void reset();
+  bool isBlocked(Index node) const { return node < m_blocked.size() && m_blocked[node] != 0; }
+  Index blockedCount() const { return static_cast<Index>(m_blockedList.size()); }
+  /// Records this step's colliding nodes for the next step.
+  void record(const ToolModel& model, const std::vector<Contact>& contacts);
+
+ private:
+  std::vector<std::uint8_t> m_blocked;
+  std::vector<Index> m_blockedList;
+};
+
+/// Scratch memory of detection, sized once per tool and reused by every step and pair.
+class DetectionWorkspace {
+ public:
+  void prepare(const ToolModel& model);
+
+ private:
+  friend void detectContacts(const ToolModel&, const Pose&, const SoftPatch&, const SoftSurfaceRayQuery*,
+                             const DetectionParameters&, PairHistory&, DetectionWorkspace&, std::vector<Contact>&,
+                             DetectionCounters&);
+  std::vector<Vec3> m_localPositions;
+  std::vector<std::uint8_t> m_localValid;
+  std::vector<Real> m_bestDistance;
+  std::vector<Index> m_bestFace;
+  std::vector<Real> m_bestU;
+  std::vector<Real> m_bestV;
+  std::vector<std::uint8_t> m_visited;
+  std::vector<Index> m_visitedList;
+};
+
+/// Finds this step's contacts between a tool piece at toolPose and the soft patch, filters them,
+/// and updates the pair's history. Allocates nothing once the workspace and outContacts have
+/// grown to the patch and tool sizes. reverseQuery may be null when parameters.reverseRay is off.
+void detectContacts(const ToolModel& model, const Pose& toolPose, const SoftPatch& patch,
+                    const SoftSurfaceRayQuery* reverseQuery, const DetectionParameters& parameters,
+                    PairHistory& history, DetectionWorkspace& workspace, std::vector<Contact>& outContacts,
+                    DetectionCounters& outCounters);
+
+}  // namespace thintool

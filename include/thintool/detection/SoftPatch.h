@@ -1,0 +1,48 @@
+// SPDX-License-Identifier: Zlib
+// Copyright (c) 2026 The ThinTool developers
+#pragma once
+
+/// @file
+/// Plain-data views of a soft body that the core reads; the Bullet glue fills them.
+
+#include <thintool/core/Math.h>
+
+#include <array>
+#include <vector>
+
+namespace thintool {
+
+/// The soft faces near one tool piece for one step, and the soft nodes they use.
+/// Vertices are local to the patch; nodeIds and faceIds map back to the soft body.
+struct SoftPatch {
+  std::vector<Vec3> positions;   ///< world, end of step as predicted by the soft solver
+  std::vector<Real> inverseMasses;
+  std::vector<Index> nodeIds;
+  std::vector<std::array<Index, 3>> faces;  ///< local vertex indices
+  std::vector<Index> faceIds;
+
+  /// +1 when the soft body's faces wind counter-clockwise seen from outside, -1 when they wind the
+  /// other way, 0 when the surface is open and has no outside (a sheet): check 2 is then skipped.
+  int orientation = 1;
+
+  void clear() {
+    positions.clear();
+    inverseMasses.clear();
+    nodeIds.clear();
+    faces.clear();
+    faceIds.clear();
+  }
+  Index vertexCount() const { return static_cast<Index>(positions.size()); }
+  Index faceCount() const { return static_cast<Index>(faces.size()); }
+};
+
+/// A query into the whole soft surface, beyond the patch: check 2's reverse ray must be able to
+/// reach the far side of the soft body.
+class SoftSurfaceRayQuery {
+ public:
+  virtual ~SoftSurfaceRayQuery() = default;
+  /// Whether the segment from + t·delta, t in [0, 1], crosses a soft face.
+  virtual bool anyHit(const Vec3& from, const Vec3& delta) const = 0;
+};
+
+}  // namespace thintool

@@ -1,0 +1,52 @@
+// SPDX-License-Identifier: Zlib
+// Copyright (c) 2026 The ThinTool developers
+#pragma once
+
+/// @file
+/// The surface of one convex tool piece, in the piece's own frame, and the checks ThinTool runs on
+/// it before building a tool model from it.
+
+#include <thintool/core/Math.h>
+#include <thintool/geometry/Aabb.h>
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace thintool {
+
+/// Closed convex triangle mesh; triangles are counter-clockwise seen from outside.
+struct ConvexMesh {
+  std::vector<Vec3> vertices;
+  std::vector<std::array<Index, 3>> triangles;
+};
+
+/// Plane n·x = offset with unit n pointing out of the piece.
+struct Plane {
+  Vec3 normal;
+  Real offset = 0;
+  Real signedDistance(const Vec3& p) const { return dot(normal, p) - offset; }
+};
+
+/// Describes the first problem found, or returns an empty string for a usable mesh: at least a
+/// tetrahedron, finite coordinates, indices in range, no zero-area triangle, closed (every edge
+/// shared by exactly two triangles in opposite directions), outward winding and convex (no vertex
+/// in front of any face's plane by more than 1e-6 of the mesh size).
+std::string validateConvexMesh(const ConvexMesh& mesh);
+
+/// Outward face planes of a valid mesh, one per triangle.
+std::vector<Plane> facePlanes(const ConvexMesh& mesh);
+
+Aabb bounds(const ConvexMesh& mesh);
+
+/// Smallest width of the piece measured across its face normals: exact for boxes and plates, an
+/// upper bound of the true minimum width otherwise. ThinTool calls it the tool's thickness.
+Real thicknessAcrossFaces(const ConvexMesh& mesh, const std::vector<Plane>& planes);
+
+/// Distance from a point on or inside the piece along direction (unit) until it leaves the piece.
+Real exitDistance(const std::vector<Plane>& planes, const Vec3& point, const Vec3& direction);
+
+/// A ConvexMesh of the box with the given half extents, centred on the origin.
+ConvexMesh makeBoxMesh(const Vec3& halfExtents);
+
+}  // namespace thintool

@@ -1,0 +1,99 @@
+// SPDX-License-Identifier: Zlib
+// Copyright (c) 2026 The ThinTool developers
+#pragma once
+
+/// @file
+/// The tool model: sample nodes on a convex tool piece, their association across the piece, and
+/// the short rays each node casts into soft tissue. Built once per piece, in the piece's frame.
+///
+/// Source: Fazioli et al. (the paper, §III.B–C) and Fukuhara et al., ROBOMECH J. 1:6 (2014),
+/// its ref. [3]. Deviations:
+/// - Sampling. The paper puts one node at each hull triangle's centroid. A box has 12 triangles,
+///   far too few for a plate pressing a ball whose faces are 0.45 m wide, so triangles are first
+///   split (longest edge first) until no edge exceeds `spacing`; each node stands for its
+///   sub-triangle, its "patch". The ref. [3] layout (a grid on the two large faces of a box) is
+///   kept as SamplingLayout::BoxFaceGrid.
+/// - Association. As in §III.C: a ray from each node along its inward normal, limited in length,
+///   finds the patch it leaves the piece through, and that patch's node becomes the partner. Pairs
+///   are not assumed mutual. The paper's "vector of indices that cannot collide" is built from
+///   each node's opposite set: its partner plus every node that chose it as partner, so check 1
+///   blocks both directions of a non-mutual pair (the cross-check of §III.C).
+/// - Probe length. A node looks for soft faces only inside the piece, up to the piece's width
+///   along its normal and at most `probeDepth`: a face deeper than that belongs to the nodes on
+///   the other side.
+
+#include <thintool/core/Math.h>
+#include <thintool/geometry/AabbTree.h>
+#include <thintool/geometry/ConvexMesh.h>
+
+#include <array>
+#include <vector>
+
+namespace thintool {
+
+enum class SamplingLayout {
+  TriangleCentroids,  ///< paper §III.C: a node at the centroid of every (split) hull triangle
+  BoxFaceGrid,        ///< ref. [3]: a grid on the two largest faces of a box; box pieces only
+};
+
+struct SamplingSettings {
+  SamplingLayout layout = SamplingLayout::TriangleCentroids;
+  /// Longest edge of the patch a node stands for (m, >= 0). 0 picks 1/8 of the piece's largest
+  /// extent: 0.1 m for the paper's 0.8 m plate, about 600 nodes. Keep it under the inradius of the
+  /// smallest soft face the tool meets, or faces can slip between the rays.
+  Real spacing = 0;
+  /// Registration fails rather than build more nodes than this (a spacing typed in the wrong unit).
+  Index maxNodes = 50000;
+};
+
+struct AssociationSettings {
+  /// Pair nodes across the piece. Check 1 needs it; off, no pairs are built and check 1 is off.
+  bool enabled = true;
+  /// Longest association ray (m, >= 0). 0 picks 1.5 × the piece's thickness, which pairs the
+  /// faces across a thin direction and leaves nodes on the narrow sides unpaired (paper Fig. 6).
+  Real maxRayLength = 0;
+};
+
+struct ToolModelSettings {
+  SamplingSettings sampling;
+  AssociationSettings association;
+  /// Deepest a soft face is looked for below a node (m, >= 0); 0 picks the piece's thickness.
+  Real probeDepth = 0;
+};
+
+/// Sample nodes of one convex piece, in the piece's frame. Immutable once built.
+struct ToolModel {
+  ConvexMesh mesh;
+  std::vector<Plane> planes;
+  Aabb bounds;
+  Real thickness = 0;  ///< smallest width across the face normals (m)
+  Real spacing = 0;    ///< the sampling spacing used (m)
+
+  // Per node.
+  std::vector<Vec3> positions;    ///< on the piece's surface
+  std::vector<Vec3> normals;      ///< unit, outward
+  std::vector<Real> probeLengths; ///< how far inside the piece the node's ray reaches (m)
+  std::vector<Index> partners;    ///< associated node, or kInvalidIndex
+  std::vector<Index> oppositeBegin;  ///< CSR offsets into opposites (size nodeCount + 1)
+  std::vector<Index> opposites;      ///< partner plus the nodes that chose this node
+
+  // The patch each node stands for: triangles tagged with their node.
+  std::vector<std::array<Vec3, 3>> patchTriangles;
+  std::vector<Index> patchOwners;
+
+  /// Boxes around each node's inward ray, for finding the rays a soft face can meet.
+  AabbTree rayTree;
+
+  Index mutualPairs = 0;    ///< nodes whose partner chose them back
+  Index unpairedNodes = 0;  ///< nodes whose association ray found nothing within its length
+
+  Index nodeCount() const { return static_cast<Index>(positions.size()); }
+};
+
+/// Builds the model of one convex piece; throws thintool::Error naming the problem.
+ToolModel buildToolModel(const ConvexMesh& mesh, const ToolModelSettings& settings);
+
+/// Half extents and centre of mesh when it is an axis-aligned box in its frame.
+bool detectBox(const ConvexMesh& mesh, Vec3& outHalfExtents, Vec3& outCentre);
+
+}  // namespace thintool

@@ -1,0 +1,191 @@
+// SPDX-License-Identifier: Zlib
+// Copyright (c) 2026 The ThinTool developers
+#include "PairState.h"
+#include "ToolAlgorithm.h"
+#include "ToolShape.h"
+
+#include <thintool/bullet/CollisionConfiguration.h>
+#include <thintool/core/Error.h>
+
+#include <BulletCollision/BroadphaseCollision/btBroadphaseInterface.h>
+#include <BulletCollision/BroadphaseCollision/btOverlappingPairCache.h>
+#include <BulletCollision/CollisionDispatch/btCollisionDispatcher.h>
+#include <BulletCollision/CollisionDispatch/btCollisionWorld.h>
+#include <BulletDynamics/Dynamics/btRigidBody.h>
+#include <BulletSoftBody/btSoftBody.h>
+
+#include <algorithm>
+#include <sstream>
+
+namespace thintool {
+
+namespace {
+
+btDefaultCollisionConstructionInfo withRoomForToolAlgorithm(btDefaultCollisionConstructionInfo info) {
+  info.m_customCollisionAlgorithmMaxElementSize =
+      std::max(info.m_customCollisionAlgorithmMaxElementSize, static_cast<int>(sizeof(detail::ToolAlgorithm)));
+  return info;
+}
+
+CollisionConfiguration& configurationOf(btCollisionWorld& world) {
+  auto* dispatcher = dynamic_cast<btCollisionDispatcher*>(world.getDispatcher());
+  auto* configuration =
+      dispatcher != nullptr ? dynamic_cast<CollisionConfiguration*>(dispatcher->getCollisionConfiguration()) : nullptr;
+  if (configuration == nullptr) {
+    throw Error(
+        "the world's btCollisionDispatcher was not built with a thintool::CollisionConfiguration; construct one "
+        "where btSoftBodyRigidBodyCollisionConfiguration was constructed");
+  }
+  return *configuration;
+}
+
+// Frees the algorithms of body's existing pairs, so that the next step recreates them through
+// the configuration, which then routes them to ThinTool or back to the stock handler.
+void reroutePairs(btCollisionWorld& world, const btRigidBody& body) {
+  // The pair cache takes a mutable proxy, though cleaning it changes only the pairs.
+  btBroadphaseProxy* proxy = const_cast<btBroadphaseProxy*>(body.getBroadphaseHandle());
+  if (proxy != nullptr) {
+    world.getBroadphase()->getOverlappingPairCache()->cleanProxyFromPairs(proxy, world.getDispatcher());
+  }
+}
+
+}  // namespace
+
+struct CollisionConfiguration::CreateFunc : btCollisionAlgorithmCreateFunc {
+  CreateFunc(CollisionConfiguration& configuration, btCollisionAlgorithmCreateFunc* stock, bool swapped)
+      : m_configuration(configuration), m_stock(stock) {
+    m_swapped = swapped;
+  }
+
+  btCollisionAlgorithm* CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& info,
+                                                 const btCollisionObjectWrapper* body0,
+                                                 const btCollisionObjectWrapper* body1) override {
+    return m_configuration.createAlgorithm(info, body0, body1, m_swapped, *m_stock);
+  }
+
+  CollisionConfiguration& m_configuration;
+  btCollisionAlgorithmCreateFunc* m_stock;
+};
+
+CollisionConfiguration::CollisionConfiguration(const btDefaultCollisionConstructionInfo& info)
+    : btSoftBodyRigidBodyCollisionConfiguration(withRoomForToolAlgorithm(info)) {
+  // Every convex type shares the stock soft–convex create functions; box stands for them all.
+  m_createFunc = std::make_unique<CreateFunc>(
+      *this, btSoftBodyRigidBodyCollisionConfiguration::getCollisionAlgorithmCreateFunc(SOFTBODY_SHAPE_PROXYTYPE,
+                                                                                          BOX_SHAPE_PROXYTYPE),
+      false);
+  m_swappedCreateFunc = std::make_unique<CreateFunc>(
+      *this, btSoftBodyRigidBodyCollisionConfiguration::getCollisionAlgorithmCreateFunc(BOX_SHAPE_PROXYTYPE,
+                                                                                          SOFTBODY_SHAPE_PROXYTYPE),
+      true);
+}
+
+CollisionConfiguration::~CollisionConfiguration() = default;
+
+btCollisionAlgorithm* CollisionConfiguration::createAlgorithm(btCollisionAlgorithmConstructionInfo& info,
+                                                              const btCollisionObjectWrapper* body0,
+                                                              const btCollisionObjectWrapper* body1, bool swapped,
+                                                              btCollisionAlgorithmCreateFunc& stock) {
+  const btCollisionObjectWrapper* softWrap = swapped ? body1 : body0;
+  const btCollisionObjectWrapper* toolWrap = swapped ? body0 : body1;
+  Tool* tool = findTool(*toolWrap->getCollisionObject());
+  btSoftBody* softBody = const_cast<btSoftBody*>(btSoftBody::upcast(softWrap->getCollisionObject()));
+  if (tool == nullptr || softBody == nullptr) {
+    return stock.CreateCollisionAlgorithm(info, body0, body1);
+  }
+  // Children of a compound arrive with their index; a plain convex body is piece 0.
+  const Index piece = tool->pieceCount() > 1 || toolWrap->m_index >= 0 ? static_cast<Index>(toolWrap->m_index) : 0;
+  if (piece >= tool->pieceCount()) {
+    return stock.CreateCollisionAlgorithm(info, body0, body1);
+  }
+  detail::PairState& state = tool->pairState(*softBody, piece);
+  void* memory = info.m_dispatcher1->allocateCollisionAlgorithm(sizeof(detail::ToolAlgorithm));
+  return new (memory) detail::ToolAlgorithm(info, *tool, state, swapped);
+}
+
+btCollisionAlgorithmCreateFunc* CollisionConfiguration::getCollisionAlgorithmCreateFunc(int proxyType0,
+                                                                                       int proxyType1) {
+  if (proxyType0 == SOFTBODY_SHAPE_PROXYTYPE && btBroadphaseProxy::isConvex(proxyType1)) {
+    return m_createFunc.get();
+  }
+  if (btBroadphaseProxy::isConvex(proxyType0) && proxyType1 == SOFTBODY_SHAPE_PROXYTYPE) {
+    return m_swappedCreateFunc.get();
+  }
+  return btSoftBodyRigidBodyCollisionConfiguration::getCollisionAlgorithmCreateFunc(proxyType0, proxyType1);
+}
+
+Tool& CollisionConfiguration::addTool(btRigidBody& body, const ToolOptions& requested) {
+  ToolOptions options = requested;
+  if (options.name.empty()) {
+    options.name = "tool " + std::to_string(m_toolsCreated + 1);
+  }
+  auto fail = [&options](const std::string& problem) { throw Error("tool '" + options.name + "': " + problem); };
+  if (m_tools.count(&body) != 0) {
+    fail("this rigid body is already registered as a tool");
+  }
+  if (body.getCollisionShape() == nullptr) {
+    fail("the rigid body has no collision shape");
+  }
+  const std::string optionProblem = validateToolOptions(options);
+  if (!optionProblem.empty()) {
+    fail(optionProblem);
+  }
+
+  std::vector<ToolModel> models;
+  std::vector<Pose> transforms;
+  try {
+    ToolModelSettings settings;
+    settings.sampling = options.sampling;
+    settings.association = options.association;
+    settings.probeDepth = options.probeDepth;
+    for (detail::ShapePiece& piece : detail::shapePieces(*body.getCollisionShape())) {
+      models.push_back(buildToolModel(piece.mesh, settings));
+      transforms.push_back(piece.transform);
+    }
+  } catch (const Error& error) {
+    fail(error.what());
+  }
+
+  auto tool = std::make_unique<Tool>(body, options, std::move(models), std::move(transforms));
+  Tool& registered = *tool;
+  m_tools.emplace(&body, std::move(tool));
+  ++m_toolsCreated;
+  body.setActivationState(DISABLE_DEACTIVATION);
+  return registered;
+}
+
+bool CollisionConfiguration::removeTool(const btRigidBody& body) {
+  return m_tools.erase(&body) != 0;
+}
+
+Tool* CollisionConfiguration::findTool(const btCollisionObject& object) const {
+  const auto found = m_tools.find(&object);
+  return found == m_tools.end() ? nullptr : found->second.get();
+}
+
+Tool& addTool(btCollisionWorld& world, btRigidBody& body, const ToolOptions& options) {
+  CollisionConfiguration* configuration = nullptr;
+  try {
+    configuration = &configurationOf(world);
+  } catch (const Error& error) {
+    const std::string name = options.name.empty() ? std::string("new tool") : options.name;
+    throw Error("tool '" + name + "': " + error.what());
+  }
+  Tool& tool = configuration->addTool(body, options);
+  reroutePairs(world, body);
+  return tool;
+}
+
+bool removeTool(btCollisionWorld& world, const btRigidBody& body) {
+  CollisionConfiguration& configuration = configurationOf(world);
+  if (configuration.findTool(body) == nullptr) {
+    return false;
+  }
+  // Free the pairs' algorithms before the tool they point to.
+  reroutePairs(world, body);
+  return configuration.removeTool(body);
+}
+
+Tool* findTool(btCollisionWorld& world, const btRigidBody& body) { return configurationOf(world).findTool(body); }
+
+}  // namespace thintool

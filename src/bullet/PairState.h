@@ -1,0 +1,64 @@
+// SPDX-License-Identifier: Zlib
+// Copyright (c) 2026 The ThinTool developers
+#pragma once
+
+// What a tool keeps per (piece, soft body) pair. It lives with the tool, not in Bullet's per-pair
+// algorithm objects: Bullet frees those when a pair separates and creates them anew when it
+// returns, and the pair's algorithm only tells the state when that happens.
+
+#include <thintool/detection/Detection.h>
+#include <thintool/response/Response.h>
+
+#include <vector>
+
+class btSoftBody;
+struct btDbvtNode;
+
+namespace thintool::detail {
+
+struct PairState {
+  btSoftBody* softBody = nullptr;
+  Index piece = 0;
+
+  /// The pair's algorithm exists and has processed at least one step since it was created.
+  bool live = false;
+
+  PairHistory history;
+  SoftPatch patch;
+  std::vector<Index> patchVertexOfNode;  ///< soft node -> patch vertex, kInvalidIndex when absent
+  std::vector<const btDbvtNode*> traversalStack;
+  /// Face count the topology facts below were computed for.
+  int facesSeen = -1;
+
+  // Results of the latest step.
+  std::vector<Contact> contacts;
+  std::vector<NodeCorrection> corrections;
+  DetectionCounters counters;
+  Wrench wrench;
+  double detectionMicroseconds = 0;
+  double responseMicroseconds = 0;
+  Index rejectedCorrections = 0;
+  bool unsupported = false;
+  bool invalidPose = false;
+
+  void clearResults() {
+    contacts.clear();
+    corrections.clear();
+    counters = DetectionCounters{};
+    wrench = Wrench{};
+    detectionMicroseconds = 0;
+    responseMicroseconds = 0;
+    rejectedCorrections = 0;
+    unsupported = false;
+    invalidPose = false;
+  }
+
+  /// The broadphase pair is gone: nothing of the last step carries over to the next contact.
+  void separate() {
+    clearResults();
+    history.reset();
+    live = false;
+  }
+};
+
+}  // namespace thintool::detail

@@ -1,0 +1,47 @@
+// SPDX-License-Identifier: Zlib
+// Copyright (c) 2026 The ThinTool developers
+#pragma once
+
+// Reading a btSoftBody's surface into the core's plain data, through the soft body's own face
+// tree (btSoftBody::m_fdbvt), so that only faces near the tool are visited.
+
+#include "PairState.h"
+
+#include <thintool/detection/SoftPatch.h>
+#include <thintool/geometry/Aabb.h>
+
+#include <vector>
+
+class btSoftBody;
+struct btDbvtNode;
+
+namespace thintool::detail {
+
+/// Builds the soft body's face tree if it has none. Bullet keeps a built tree up to date in every
+/// predictMotion; its own initializeFaceTree() compares every face with every other (quadratic),
+/// so ThinTool inserts the leaves itself and optimises the tree once.
+void ensureFaceTree(btSoftBody& softBody);
+
+/// +1 when the closed surface winds counter-clockwise seen from outside, -1 when inverted, 0 when
+/// the surface is open (some edge does not have exactly two faces) or encloses no volume.
+int surfaceOrientation(const btSoftBody& softBody);
+
+/// Fills state.patch with the faces whose tree volumes overlap worldBox, and their nodes.
+void gatherPatch(btSoftBody& softBody, const Aabb& worldBox, PairState& state);
+
+/// Clears the soft node -> patch vertex map for the next gather.
+void releasePatch(PairState& state);
+
+/// Check 2's reverse ray against the whole soft surface.
+class SoftBodyRayQuery final : public SoftSurfaceRayQuery {
+ public:
+  SoftBodyRayQuery(const btSoftBody& softBody, std::vector<const btDbvtNode*>& stack)
+      : m_softBody(softBody), m_stack(stack) {}
+  bool anyHit(const Vec3& from, const Vec3& delta) const override;
+
+ private:
+  const btSoftBody& m_softBody;
+  std::vector<const btDbvtNode*>& m_stack;
+};
+
+}  // namespace thintool::detail

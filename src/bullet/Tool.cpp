@@ -1,0 +1,99 @@
+// SPDX-License-Identifier: Zlib
+// Copyright (c) 2026 The ThinTool developers
+#include "PairState.h"
+
+#include <thintool/bullet/Convert.h>
+#include <thintool/bullet/Tool.h>
+
+#include <BulletDynamics/Dynamics/btRigidBody.h>
+#include <BulletSoftBody/btSoftBody.h>
+
+#include <algorithm>
+
+namespace thintool {
+
+Tool::Tool(btRigidBody& body, const ToolOptions& options, std::vector<ToolModel> pieces,
+           std::vector<Pose> pieceTransforms)
+    : m_body(body), m_options(options), m_pieces(std::move(pieces)), m_pieceTransforms(std::move(pieceTransforms)) {
+  Index largest = 0;
+  for (const ToolModel& piece : m_pieces) {
+    largest = std::max(largest, piece.nodeCount());
+  }
+  m_report.contacts.reserve(largest);
+}
+
+Tool::~Tool() = default;
+
+Index Tool::nodeCount() const {
+  Index count = 0;
+  for (const ToolModel& piece : m_pieces) {
+    count += piece.nodeCount();
+  }
+  return count;
+}
+
+detail::PairState& Tool::pairState(btSoftBody& softBody, Index piece) {
+  for (auto& state : m_pairs) {
+    if (state->softBody == &softBody && state->piece == piece) {
+      return *state;
+    }
+  }
+  m_pairs.push_back(std::make_unique<detail::PairState>());
+  detail::PairState& state = *m_pairs.back();
+  state.softBody = &softBody;
+  state.piece = piece;
+  return state;
+}
+
+const ToolStepReport& Tool::report() {
+  m_report.contacts.clear();
+  m_report.diagnostics = ToolDiagnostics{};
+  m_report.wrench = Wrench{};
+  ToolDiagnostics& diagnostics = m_report.diagnostics;
+  const Pose bodyPose = toPose(m_body.getWorldTransform());
+
+  for (const auto& statePointer : m_pairs) {
+    const detail::PairState& state = *statePointer;
+    if (!state.live) {
+      continue;
+    }
+    ++diagnostics.pairs;
+    diagnostics.detection.accumulate(state.counters);
+    diagnostics.nodesMoved += static_cast<Index>(state.corrections.size()) - state.rejectedCorrections;
+    diagnostics.rejectedCorrections += state.rejectedCorrections;
+    diagnostics.detectionMicroseconds += state.detectionMicroseconds;
+    diagnostics.responseMicroseconds += state.responseMicroseconds;
+    diagnostics.unsupportedPairs += state.unsupported ? 1 : 0;
+    diagnostics.invalidPosePairs += state.invalidPose ? 1 : 0;
+
+    // The piece's wrench is about the piece's origin; move the torque to the body's origin.
+    const Pose piecePose = bodyPose * m_pieceTransforms[state.piece];
+    m_report.wrench.force += state.wrench.force;
+    m_report.wrench.torque +=
+        state.wrench.torque + cross(piecePose.translation - bodyPose.translation, state.wrench.force);
+
+    // What the soft solver left inside the tool, measured at the positions the step ended with.
+    const ToolModel& model = m_pieces[state.piece];
+    const btSoftBody& softBody = *state.softBody;
+    for (const Contact& contact : state.contacts) {
+      m_report.contacts.push_back({&softBody, state.piece, contact});
+      if (contact.softFace >= static_cast<Index>(softBody.m_faces.size())) {
+        continue;
+      }
+      const btSoftBody::Face& face = softBody.m_faces[static_cast<int>(contact.softFace)];
+      Vec3 point;
+      for (int k = 0; k < 3; ++k) {
+        point += toVec3(face.m_n[k]->m_x) * contact.barycentric[k];
+      }
+      const Vec3 normal = piecePose.applyToDirection(model.normals[contact.toolNode]);
+      const Vec3 surfacePoint = piecePose.apply(model.positions[contact.toolNode]);
+      const Real penetration = -dot(point - surfacePoint, normal);
+      if (penetration > diagnostics.maxRemainingPenetration) {
+        diagnostics.maxRemainingPenetration = penetration;
+      }
+    }
+  }
+  return m_report;
+}
+
+}  // namespace thintool
