@@ -61,7 +61,8 @@ void ensureFaceTree(btSoftBody& softBody) {
     btSoftBody::Face& face = softBody.m_faces[i];
     face.m_leaf = softBody.m_fdbvt.insert(VolumeOf(face, 0), &face);
   }
-  softBody.m_fdbvt.optimizeTopDown();
+  // The default threshold hands groups of up to 128 leaves to a cubic bottom-up pass.
+  softBody.m_fdbvt.optimizeTopDown(8);
 }
 
 int surfaceOrientation(const btSoftBody& softBody) {

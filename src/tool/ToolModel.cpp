@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace thintool {
@@ -33,43 +34,152 @@ void throwTooManyNodes(const SamplingSettings& sampling, Real spacing) {
   throw Error(message.str());
 }
 
-// Splits every hull triangle through the midpoint of its longest edge until no edge exceeds
-// spacing, and puts a node at each piece's centroid.
-void sampleTriangleCentroids(ToolModel& model, const SamplingSettings& sampling, Real spacing) {
-  // A hair of slack so that an edge of exactly `spacing` is not split again by rounding.
-  const Real spacingSquared = spacing * spacing * (1 + 1e-9);
-  std::vector<std::array<Vec3, 3>> pending;
+// Paper §III.C as written: one node at each hull triangle's centroid.
+void sampleHullTriangleCentroids(ToolModel& model, const SamplingSettings& sampling) {
   for (std::size_t t = 0; t < model.mesh.triangles.size(); ++t) {
     const auto& tri = model.mesh.triangles[t];
-    const Vec3 normal = model.planes[t].normal;
-    pending.push_back({model.mesh.vertices[tri[0]], model.mesh.vertices[tri[1]], model.mesh.vertices[tri[2]]});
-    while (!pending.empty()) {
-      const std::array<Vec3, 3> piece = pending.back();
-      pending.pop_back();
-      int longest = 0;
-      Real longestSquared = -1;
-      for (int k = 0; k < 3; ++k) {
-        const Real edgeSquared = lengthSquared(piece[(k + 1) % 3] - piece[k]);
-        if (edgeSquared > longestSquared) {
-          longestSquared = edgeSquared;
-          longest = k;
+    const Vec3& a = model.mesh.vertices[tri[0]];
+    const Vec3& b = model.mesh.vertices[tri[1]];
+    const Vec3& c = model.mesh.vertices[tri[2]];
+    const Index node = model.nodeCount();
+    if (node >= sampling.maxNodes) {
+      throwTooManyNodes(sampling, 0);
+    }
+    addNode(model, (a + b + c) / 3, model.planes[t].normal);
+    addPatchTriangle(model, node, a, b, c);
+  }
+}
+
+struct Point2 {
+  Real u = 0;
+  Real v = 0;
+};
+
+// Sutherland–Hodgman: keeps the part of polygon with coordinate `axis` (0: u, 1: v) on the side
+// `sign`·(x - bound) <= 0. A triangle clipped by a rectangle has at most 7 corners.
+int clipPolygon(const Point2* in, int count, int axis, Real bound, Real sign, Point2* out) {
+  auto coordinate = [axis](const Point2& p) { return axis == 0 ? p.u : p.v; };
+  int written = 0;
+  for (int k = 0; k < count; ++k) {
+    const Point2& from = in[k];
+    const Point2& to = in[(k + 1) % count];
+    const Real dFrom = sign * (coordinate(from) - bound);
+    const Real dTo = sign * (coordinate(to) - bound);
+    if (dFrom <= 0) {
+      out[written++] = from;
+    }
+    if ((dFrom < 0 && dTo > 0) || (dFrom > 0 && dTo < 0)) {
+      const Real s = dFrom / (dFrom - dTo);
+      out[written++] = {from.u + s * (to.u - from.u), from.v + s * (to.v - from.v)};
+    }
+  }
+  return written;
+}
+
+// Every planar face is cut by a grid of cells at most `spacing` wide, aligned with its longest
+// edge; a node stands at the centroid of each cell's part of the face.
+void sampleFacePatches(ToolModel& model, const SamplingSettings& sampling, Real spacing) {
+  const ConvexMesh& mesh = model.mesh;
+  const Real size = length(model.bounds.extent());
+  std::vector<char> grouped(mesh.triangles.size(), 0);
+  for (std::size_t first = 0; first < mesh.triangles.size(); ++first) {
+    if (grouped[first]) {
+      continue;
+    }
+    // The face: every triangle on the first one's plane.
+    const Plane plane = model.planes[first];
+    std::vector<std::size_t> face;
+    for (std::size_t t = first; t < mesh.triangles.size(); ++t) {
+      const Plane& other = model.planes[t];
+      if (!grouped[t] && dot(other.normal, plane.normal) > 1 - 1e-9 &&
+          std::abs(other.offset - plane.offset) <= 1e-9 * size) {
+        grouped[t] = 1;
+        face.push_back(t);
+      }
+    }
+
+    // Face frame: u along the longest boundary edge, v = n × u, origin at a vertex. An edge
+    // whose reverse belongs to the same face is a diagonal of the triangulation, not a side.
+    auto isInterior = [&](Index from, Index to) {
+      for (std::size_t t : face) {
+        const auto& tri = mesh.triangles[t];
+        for (int k = 0; k < 3; ++k) {
+          if (tri[k] == to && tri[(k + 1) % 3] == from) {
+            return true;
+          }
         }
       }
-      if (longestSquared > spacingSquared) {
-        const Vec3& a = piece[longest];
-        const Vec3& b = piece[(longest + 1) % 3];
-        const Vec3& c = piece[(longest + 2) % 3];
-        const Vec3 middle = (a + b) * Real(0.5);
-        pending.push_back({a, middle, c});
-        pending.push_back({middle, b, c});
-        continue;
+      return false;
+    };
+    Vec3 axisU;
+    Real longest = -1;
+    for (std::size_t t : face) {
+      for (int k = 0; k < 3; ++k) {
+        const Index from = mesh.triangles[t][k];
+        const Index to = mesh.triangles[t][(k + 1) % 3];
+        const Vec3 edge = mesh.vertices[to] - mesh.vertices[from];
+        if (lengthSquared(edge) > longest && !isInterior(from, to)) {
+          longest = lengthSquared(edge);
+          axisU = normalizedOrZero(edge - plane.normal * dot(edge, plane.normal));
+        }
       }
-      const Index node = model.nodeCount();
-      if (node >= sampling.maxNodes) {
-        throwTooManyNodes(sampling, spacing);
+    }
+    const Vec3 axisV = cross(plane.normal, axisU);
+    const Vec3 origin = mesh.vertices[mesh.triangles[face.front()][0]];
+    auto toPlane = [&](const Vec3& p) { return Point2{dot(p - origin, axisU), dot(p - origin, axisV)}; };
+    auto toSpace = [&](const Point2& p) { return origin + axisU * p.u + axisV * p.v; };
+
+    Point2 low{std::numeric_limits<Real>::max(), std::numeric_limits<Real>::max()};
+    Point2 high{-std::numeric_limits<Real>::max(), -std::numeric_limits<Real>::max()};
+    for (std::size_t t : face) {
+      for (Index corner : mesh.triangles[t]) {
+        const Point2 p = toPlane(mesh.vertices[corner]);
+        low = {std::min(low.u, p.u), std::min(low.v, p.v)};
+        high = {std::max(high.u, p.u), std::max(high.v, p.v)};
       }
-      addNode(model, (piece[0] + piece[1] + piece[2]) / 3, normal);
-      addPatchTriangle(model, node, piece[0], piece[1], piece[2]);
+    }
+    // The slack keeps a side of exactly n·spacing from getting n + 1 cells through rounding.
+    const Index cellsU = static_cast<Index>(std::max<Real>(1, std::ceil((high.u - low.u) / spacing - 1e-9)));
+    const Index cellsV = static_cast<Index>(std::max<Real>(1, std::ceil((high.v - low.v) / spacing - 1e-9)));
+    if (Real(model.nodeCount()) + Real(cellsU) * Real(cellsV) > Real(sampling.maxNodes)) {
+      throwTooManyNodes(sampling, spacing);
+    }
+    const Real cellU = (high.u - low.u) / cellsU;
+    const Real cellV = (high.v - low.v) / cellsV;
+    const Real negligibleArea = 1e-12 * cellU * cellV;
+
+    for (Index i = 0; i < cellsU; ++i) {
+      for (Index j = 0; j < cellsV; ++j) {
+        const Real u0 = low.u + i * cellU;
+        const Real v0 = low.v + j * cellV;
+        Real area = 0;
+        Point2 moment;
+        const Index node = model.nodeCount();
+        for (std::size_t t : face) {
+          Point2 a[8];
+          Point2 b[8];
+          for (int k = 0; k < 3; ++k) {
+            a[k] = toPlane(mesh.vertices[mesh.triangles[t][k]]);
+          }
+          int count = clipPolygon(a, 3, 0, u0, -1, b);
+          count = clipPolygon(b, count, 0, u0 + cellU, 1, a);
+          count = clipPolygon(a, count, 1, v0, -1, b);
+          count = clipPolygon(b, count, 1, v0 + cellV, 1, a);
+          for (int k = 1; k + 1 < count; ++k) {
+            const Real piece = ((a[k].u - a[0].u) * (a[k + 1].v - a[0].v) - (a[k + 1].u - a[0].u) * (a[k].v - a[0].v)) / 2;
+            if (piece <= negligibleArea) {
+              continue;
+            }
+            area += piece;
+            moment.u += piece * (a[0].u + a[k].u + a[k + 1].u) / 3;
+            moment.v += piece * (a[0].v + a[k].v + a[k + 1].v) / 3;
+            addPatchTriangle(model, node, toSpace(a[0]), toSpace(a[k]), toSpace(a[k + 1]));
+          }
+        }
+        if (area > 0) {
+          addNode(model, toSpace({moment.u / area, moment.v / area}), plane.normal);
+        }
+      }
     }
   }
 }
@@ -79,15 +189,15 @@ void sampleBoxFaceGrid(ToolModel& model, const SamplingSettings& sampling, Real 
   Vec3 half;
   Vec3 centre;
   if (!detectBox(model.mesh, half, centre)) {
-    throw Error("sampling layout BoxFaceGrid needs a box-shaped piece; use TriangleCentroids for other shapes");
+    throw Error("sampling layout BoxFaceGrid needs a box-shaped piece; use FacePatches for other shapes");
   }
   int thin = 0;
   if (half.y < half[thin]) thin = 1;
   if (half.z < half[thin]) thin = 2;
   const int axisU = (thin + 1) % 3;
   const int axisV = (thin + 2) % 3;
-  const Index cellsU = static_cast<Index>(std::max<Real>(1, std::ceil(2 * half[axisU] / spacing)));
-  const Index cellsV = static_cast<Index>(std::max<Real>(1, std::ceil(2 * half[axisV] / spacing)));
+  const Index cellsU = static_cast<Index>(std::max<Real>(1, std::ceil(2 * half[axisU] / spacing - 1e-9)));
+  const Index cellsV = static_cast<Index>(std::max<Real>(1, std::ceil(2 * half[axisV] / spacing - 1e-9)));
   if (Real(cellsU) * Real(cellsV) * 2 > Real(sampling.maxNodes)) {
     throwTooManyNodes(sampling, spacing);
   }
@@ -247,8 +357,10 @@ ToolModel buildToolModel(const ConvexMesh& mesh, const ToolModelSettings& settin
 
   if (settings.sampling.layout == SamplingLayout::BoxFaceGrid) {
     sampleBoxFaceGrid(model, settings.sampling, model.spacing);
+  } else if (settings.sampling.layout == SamplingLayout::HullTriangleCentroids) {
+    sampleHullTriangleCentroids(model, settings.sampling);
   } else {
-    sampleTriangleCentroids(model, settings.sampling, model.spacing);
+    sampleFacePatches(model, settings.sampling, model.spacing);
   }
 
   const Real probeDepth = settings.probeDepth > 0 ? settings.probeDepth : model.thickness;

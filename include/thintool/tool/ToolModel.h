@@ -8,11 +8,14 @@
 ///
 /// Source: Fazioli et al. (the paper, §III.B–C) and Fukuhara et al., ROBOMECH J. 1:6 (2014),
 /// its ref. [3]. Deviations:
-/// - Sampling. The paper puts one node at each hull triangle's centroid. A box has 12 triangles,
-///   far too few for a plate pressing a ball whose faces are 0.45 m wide, so triangles are first
-///   split (longest edge first) until no edge exceeds `spacing`; each node stands for its
-///   sub-triangle, its "patch". The ref. [3] layout (a grid on the two large faces of a box) is
-///   kept as SamplingLayout::BoxFaceGrid.
+/// - Sampling. The paper puts one node at each hull triangle's centroid, with the triangle's
+///   normal (kept as SamplingLayout::HullTriangleCentroids). A box has 12 triangles, far too few
+///   for a plate pressing a ball whose faces are 0.45 m wide, and splitting its long, thin side
+///   triangles makes slivers by the hundred. By default each planar face is instead cut by a grid
+///   of cells no wider than `spacing`, aligned with the face's longest edge, and a node stands at
+///   the centroid of each cell's part of the face, its "patch" (SamplingLayout::FacePatches). On
+///   a box face this is the grid of ref. [3], which is also kept as SamplingLayout::BoxFaceGrid
+///   (the two large faces only).
 /// - Association. As in §III.C: a ray from each node along its inward normal, limited in length,
 ///   finds the patch it leaves the piece through, and that patch's node becomes the partner. Pairs
 ///   are not assumed mutual. The paper's "vector of indices that cannot collide" is built from
@@ -32,15 +35,16 @@
 namespace thintool {
 
 enum class SamplingLayout {
-  TriangleCentroids,  ///< paper §III.C: a node at the centroid of every (split) hull triangle
-  BoxFaceGrid,        ///< ref. [3]: a grid on the two largest faces of a box; box pieces only
+  FacePatches,            ///< every face cut into cells of at most `spacing`; a node per cell
+  HullTriangleCentroids,  ///< paper §III.C as written: a node per hull triangle; spacing unused
+  BoxFaceGrid,            ///< ref. [3]: a grid on the two largest faces of a box; box pieces only
 };
 
 struct SamplingSettings {
-  SamplingLayout layout = SamplingLayout::TriangleCentroids;
-  /// Longest edge of the patch a node stands for (m, >= 0). 0 picks 1/8 of the piece's largest
-  /// extent: 0.1 m for the paper's 0.8 m plate, about 600 nodes. Keep it under the inradius of the
-  /// smallest soft face the tool meets, or faces can slip between the rays.
+  SamplingLayout layout = SamplingLayout::FacePatches;
+  /// Cell size of the sampling grid (m, >= 0). 0 picks 1/8 of the piece's largest extent: 0.1 m
+  /// for the paper's 0.8 m plate, 160 nodes. Every soft face whose inscribed circle has a radius of
+  /// at least spacing/√2 contains a node's ray; smaller faces can slip between the rays.
   Real spacing = 0;
   /// Registration fails rather than build more nodes than this (a spacing typed in the wrong unit).
   Index maxNodes = 50000;

@@ -1,0 +1,241 @@
+// SPDX-License-Identifier: Zlib
+// Copyright (c) 2026 The ThinTool developers
+#include "SoftBallScene.h"
+
+#include <BulletSoftBody/btDefaultSoftBodySolver.h>
+#include <BulletSoftBody/btSoftBodyHelpers.h>
+#include <BulletSoftBody/btSoftBodyRigidBodyCollisionConfiguration.h>
+#include <BulletSoftBody/btSoftRigidDynamicsWorld.h>
+#include <btBulletDynamicsCommon.h>
+
+#include <chrono>
+#include <cmath>
+
+namespace thintool::scenes {
+
+namespace {
+
+constexpr double kParkedHeight = 50;   // m: where the tool waits while the ball settles
+constexpr double kStartClearance = 0.1;  // m above the soft margin over the ball's top
+
+struct Variant {
+  double margin;
+  double kKHR;
+  int positionIterations;
+  double voxel;
+};
+
+Variant variantOf(Algorithm algorithm) {
+  switch (algorithm) {
+    case Algorithm::StockA:
+      return {0.25, 0.1, 1, 0.25};
+    case Algorithm::StockB:
+      return {0.25, 1, 10, 0.25};
+    case Algorithm::StockE:
+    case Algorithm::ThinTool:
+      break;
+  }
+  return {0.05, 1, 10, 0.02};
+}
+
+}  // namespace
+
+const char* algorithmName(Algorithm algorithm) {
+  switch (algorithm) {
+    case Algorithm::StockA:
+      return "stock A (defaults)";
+    case Algorithm::StockB:
+      return "stock B (kKHR 1, 10 it.)";
+    case Algorithm::StockE:
+      return "stock E (B, skin 0.05)";
+    case Algorithm::ThinTool:
+      break;
+  }
+  return "ThinTool (E's soft settings)";
+}
+
+const char* toolShapeName(ToolShape shape) { return shape == ToolShape::Plate ? "plate" : "needle"; }
+
+struct SoftBallScene::Bullet {
+  std::unique_ptr<btCollisionConfiguration> configuration;
+  std::unique_ptr<btCollisionDispatcher> dispatcher;
+  btDbvtBroadphase broadphase;
+  btSequentialImpulseConstraintSolver constraintSolver;
+  btDefaultSoftBodySolver softSolver;
+  btBoxShape groundShape{btVector3(20, 1, 20)};
+  btDefaultMotionState groundMotion{btTransform(btQuaternion::getIdentity(), btVector3(0, -1, 0))};
+  std::unique_ptr<btRigidBody> ground;
+  std::unique_ptr<btBoxShape> toolShape;
+  btDefaultMotionState toolMotion{
+      btTransform(btQuaternion::getIdentity(), btVector3(0, btScalar(kParkedHeight), 0))};
+  std::unique_ptr<btRigidBody> tool;
+};
+
+SoftBallScene::SoftBallScene(const SceneSettings& settings) : m_settings(settings), m_bullet(new Bullet) {
+  Bullet& b = *m_bullet;
+  const Variant variant = variantOf(settings.algorithm);
+  if (settings.algorithm == Algorithm::ThinTool) {
+    b.configuration = std::make_unique<thintool::CollisionConfiguration>();
+  } else {
+    b.configuration = std::make_unique<btSoftBodyRigidBodyCollisionConfiguration>();
+  }
+  b.dispatcher = std::make_unique<btCollisionDispatcher>(b.configuration.get());
+  m_world = std::make_unique<btSoftRigidDynamicsWorld>(b.dispatcher.get(), &b.broadphase, &b.constraintSolver,
+                                                       b.configuration.get(), &b.softSolver);
+  m_world->setGravity(btVector3(0, -10, 0));
+  btSoftBodyWorldInfo& info = m_world->getWorldInfo();
+  info.m_gravity = m_world->getGravity();
+  info.m_sparsesdf.setDefaultVoxelsz(btScalar(variant.voxel));
+  info.m_sparsesdf.Reset();
+
+  b.ground = std::make_unique<btRigidBody>(btRigidBody::btRigidBodyConstructionInfo(0, &b.groundMotion, &b.groundShape));
+  m_world->addRigidBody(b.ground.get());
+
+  m_ball = btSoftBodyHelpers::CreateEllipsoid(info, btVector3(0, 1.3, 0), btVector3(1, 1, 1), settings.ballResolution);
+  m_ball->m_materials[0]->m_kLST = 0.5;
+  m_ball->m_cfg.kDF = 0.5;
+  m_ball->m_cfg.kPR = 50;
+  m_ball->m_cfg.kKHR = btScalar(variant.kKHR);
+  m_ball->m_cfg.piterations = variant.positionIterations;
+  // The same damping per second at every time step.
+  m_ball->m_cfg.kDP = btScalar(1 - std::pow(0.95, 60 * settings.timeStep));
+  m_ball->setTotalMass(1);
+  m_ball->getCollisionShape()->setMargin(btScalar(variant.margin));
+  m_world->addSoftBody(m_ball);
+
+  const btVector3 half = settings.tool == ToolShape::Plate ? btVector3(0.4, 0.01, 0.4) : btVector3(0.5, 0.01, 0.01);
+  b.toolShape = std::make_unique<btBoxShape>(half);
+  b.toolShape->setMargin(btScalar(0.001));
+  b.tool = std::make_unique<btRigidBody>(btRigidBody::btRigidBodyConstructionInfo(0, &b.toolMotion, b.toolShape.get()));
+  b.tool->setCollisionFlags(b.tool->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
+  b.tool->setActivationState(DISABLE_DEACTIVATION);
+  m_tool = b.tool.get();
+  m_world->addRigidBody(m_tool);
+  if (settings.algorithm == Algorithm::ThinTool) {
+    m_thinTool = &thintool::addTool(*m_world, *m_tool, settings.toolOptions);
+  }
+}
+
+SoftBallScene::~SoftBallScene() {
+  if (m_thinTool != nullptr) {
+    thintool::removeTool(*m_world, *m_tool);
+  }
+  m_world->removeRigidBody(m_tool);
+  m_world->removeSoftBody(m_ball);
+  delete m_ball;
+  m_world->removeRigidBody(m_bullet->ground.get());
+  m_world.reset();
+}
+
+void SoftBallScene::settle() {
+  const int steps = static_cast<int>(std::lround(m_settings.settleSeconds / m_settings.timeStep));
+  const btTransform parked(btQuaternion::getIdentity(), btVector3(0, btScalar(kParkedHeight), 0));
+  for (int i = 0; i < steps; ++i) {
+    step(parked);
+  }
+}
+
+double SoftBallScene::step(const btTransform& toolPose) {
+  m_bullet->toolMotion.setWorldTransform(toolPose);
+  const btScalar dt = btScalar(m_settings.timeStep);
+  const auto start = std::chrono::steady_clock::now();
+  m_world->stepSimulation(dt, 1, dt);
+  return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+}
+
+ToolBox SoftBallScene::toolBox() const {
+  ToolBox box;
+  const btTransform& t = m_tool->getWorldTransform();
+  for (int i = 0; i < 3; ++i) {
+    const btVector3& row = t.getBasis()[i];
+    box.rotationRows[i] = {row.x(), row.y(), row.z()};
+  }
+  box.origin = {t.getOrigin().x(), t.getOrigin().y(), t.getOrigin().z()};
+  const btVector3 half = m_bullet->toolShape->getHalfExtentsWithMargin();
+  box.halfExtents = {half.x(), half.y(), half.z()};
+  return box;
+}
+
+double SoftBallScene::softMargin() const { return m_ball->getCollisionShape()->getMargin(); }
+
+double SoftBallScene::ballTop() const {
+  double top = -1e30;
+  for (int i = 0; i < m_ball->m_nodes.size(); ++i) {
+    top = std::max(top, double(m_ball->m_nodes[i].m_x.y()));
+  }
+  return top;
+}
+
+double SoftBallScene::ballMeanHeight() const {
+  double sum = 0;
+  for (int i = 0; i < m_ball->m_nodes.size(); ++i) {
+    sum += m_ball->m_nodes[i].m_x.y();
+  }
+  return sum / m_ball->m_nodes.size();
+}
+
+namespace {
+
+std::vector<Point> nodePositions(const btSoftBody& ball) {
+  std::vector<Point> points(ball.m_nodes.size());
+  for (int i = 0; i < ball.m_nodes.size(); ++i) {
+    const btVector3& x = ball.m_nodes[i].m_x;
+    points[i] = {x.x(), x.y(), x.z()};
+  }
+  return points;
+}
+
+std::vector<std::array<int, 3>> faceIndices(const btSoftBody& ball) {
+  std::vector<std::array<int, 3>> faces(ball.m_faces.size());
+  for (int i = 0; i < ball.m_faces.size(); ++i) {
+    for (int k = 0; k < 3; ++k) {
+      faces[i][k] = static_cast<int>(ball.m_faces[i].m_n[k] - &ball.m_nodes[0]);
+    }
+  }
+  return faces;
+}
+
+}  // namespace
+
+PressResult runPress(const PressSettings& settings) {
+  SoftBallScene scene(settings.scene);
+  scene.settle();
+  const double dt = settings.scene.timeStep;
+  const double halfThickness = scene.toolBox().halfExtents.y;
+  const double startHeight = scene.ballTop() + scene.softMargin() + kStartClearance + halfThickness;
+  const double targetHeight = scene.ballMeanHeight();
+  const int moveSteps = static_cast<int>(std::ceil((startHeight - targetHeight) / (settings.speed * dt)));
+  const int holdSteps = static_cast<int>(std::lround(settings.holdSeconds / dt));
+
+  btTransform pose(btQuaternion::getIdentity(), btVector3(0, btScalar(startHeight), 0));
+  scene.step(pose);  // place the tool at its start
+  const std::vector<std::array<int, 3>> faces = faceIndices(scene.ball());
+  CrossingTracker tracker;
+  tracker.start(scene.toolBox(), nodePositions(scene.ball()), scene.ballMeanHeight());
+
+  PressResult result;
+  double wallMicroseconds = 0;
+  double toolMicroseconds = 0;
+  for (int i = 1; i <= moveSteps + holdSteps; ++i) {
+    const double height = std::max(targetHeight, startHeight - settings.speed * dt * std::min(i, moveSteps));
+    pose.setOrigin(btVector3(0, btScalar(height), 0));
+    wallMicroseconds += scene.step(pose);
+    tracker.update(scene.toolBox(), nodePositions(scene.ball()), faces);
+    if (thintool::Tool* tool = scene.tool()) {
+      const thintool::ToolStepReport& report = tool->report();
+      const thintool::ToolDiagnostics& d = report.diagnostics;
+      toolMicroseconds += d.detectionMicroseconds + d.responseMicroseconds;
+      result.maxContacts = std::max(result.maxContacts, int(d.detection.colliding));
+      result.excludedByCheck1 += d.detection.excludedByCheck1;
+      result.excludedByCheck2 += d.detection.excludedByCheck2;
+      result.maxRemainingPenetration = std::max(result.maxRemainingPenetration, d.maxRemainingPenetration);
+    }
+  }
+  result.steps = moveSteps + holdSteps;
+  result.microsecondsPerStep = wallMicroseconds / result.steps;
+  result.toolMicrosecondsPerStep = toolMicroseconds / result.steps;
+  result.metrics = tracker.metrics();
+  return result;
+}
+
+}  // namespace thintool::scenes

@@ -1,0 +1,106 @@
+// SPDX-License-Identifier: Zlib
+// Copyright (c) 2026 The ThinTool developers
+#pragma once
+
+/// @file
+/// The paper's first scene and the team's baseline (shared/notes/baseline.md): a kinematic thin
+/// tool pressed into a 128-face soft ball resting on the ground, run with stock Bullet or with
+/// ThinTool. Shared by the main job, the tests and the benchmarks; not part of the library.
+
+#include "Metrics.h"
+
+#include <thintool/thintool.h>
+
+#include <LinearMath/btTransform.h>
+
+#include <memory>
+#include <string>
+
+class btSoftRigidDynamicsWorld;
+class btSoftBody;
+class btRigidBody;
+class btCollisionShape;
+
+namespace thintool::scenes {
+
+/// Who handles the tool–ball contact, with the soft settings of baseline.md's variants.
+enum class Algorithm {
+  StockA,    ///< stock defaults: margin 0.25, kKHR 0.1, 1 position iteration, SDF voxel 0.25
+  StockB,    ///< A tuned: kKHR 1, 10 position iterations
+  StockE,    ///< B with a realistic skin: margin 0.05, SDF voxel 0.02
+  ThinTool,  ///< E's soft settings, the tool registered with ThinTool
+};
+const char* algorithmName(Algorithm algorithm);
+
+enum class ToolShape {
+  Plate,   ///< 0.8 × 0.02 × 0.8 m, thin along y
+  Needle,  ///< a bar 1.0 × 0.02 × 0.02 m along x
+};
+const char* toolShapeName(ToolShape shape);
+
+struct SceneSettings {
+  Algorithm algorithm = Algorithm::ThinTool;
+  ToolShape tool = ToolShape::Plate;
+  double timeStep = 1.0 / 60;  ///< s
+  int ballResolution = 63;     ///< btSoftBodyHelpers::CreateEllipsoid's res: 63 gives 128 faces
+  double settleSeconds = 2;
+  thintool::ToolOptions toolOptions;  ///< used when algorithm is ThinTool
+};
+
+/// A world with ground, ball and tool, stepped by the caller. The tool is kinematic and follows
+/// the pose given to step(), as a haptic device's pose would through a motion state.
+class SoftBallScene {
+ public:
+  explicit SoftBallScene(const SceneSettings& settings);
+  ~SoftBallScene();
+  SoftBallScene(const SoftBallScene&) = delete;
+  SoftBallScene& operator=(const SoftBallScene&) = delete;
+
+  /// Lets the ball settle for settings.settleSeconds with the tool parked far above.
+  void settle();
+  /// Moves the tool to toolPose and steps once; returns the wall time of stepSimulation (µs).
+  double step(const btTransform& toolPose);
+
+  btSoftRigidDynamicsWorld& world() { return *m_world; }
+  btSoftBody& ball() { return *m_ball; }
+  btRigidBody& toolBody() { return *m_tool; }
+  thintool::Tool* tool() { return m_thinTool; }
+  const SceneSettings& settings() const { return m_settings; }
+  ToolBox toolBox() const;
+  double softMargin() const;
+  /// Highest and mean node height of the ball (m).
+  double ballTop() const;
+  double ballMeanHeight() const;
+
+ private:
+  SceneSettings m_settings;
+  struct Bullet;
+  std::unique_ptr<Bullet> m_bullet;
+  std::unique_ptr<btSoftRigidDynamicsWorld> m_world;
+  btSoftBody* m_ball = nullptr;
+  btRigidBody* m_tool = nullptr;
+  thintool::Tool* m_thinTool = nullptr;
+};
+
+/// The baseline run: the tool starts 0.1 m above the soft margin over the ball's top, moves
+/// straight down at `speed` to the ball's mean node height, then holds for `holdSeconds`.
+struct PressSettings {
+  SceneSettings scene;
+  double speed = 1;  ///< m/s
+  double holdSeconds = 0.25;
+};
+
+struct PressResult {
+  RunMetrics metrics;
+  int steps = 0;                        ///< steps while moving and holding
+  double microsecondsPerStep = 0;       ///< mean stepSimulation wall time over those steps
+  double toolMicrosecondsPerStep = 0;   ///< ThinTool's own share (detection and response)
+  int maxContacts = 0;                  ///< ThinTool contacts in one step
+  long excludedByCheck1 = 0;            ///< summed over the steps
+  long excludedByCheck2 = 0;
+  double maxRemainingPenetration = 0;   ///< ThinTool's own measure, for comparison with metrics
+};
+
+PressResult runPress(const PressSettings& settings);
+
+}  // namespace thintool::scenes
