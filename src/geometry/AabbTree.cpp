@@ -8,6 +8,7 @@ namespace thintool {
 
 void AabbTree::build(const std::vector<Aabb>& itemBoxes) {
   m_nodes.clear();
+  m_leafBoxes.clear();
   m_items.resize(itemBoxes.size());
   if (itemBoxes.empty()) {
     return;
@@ -21,6 +22,10 @@ void AabbTree::build(const std::vector<Aabb>& itemBoxes) {
   m_nodes.reserve(2 * itemBoxes.size());
   m_nodes.emplace_back();
   buildRange(itemBoxes, centres, 0, static_cast<Index>(itemBoxes.size()), 0);
+  m_leafBoxes.resize(m_items.size());
+  for (Index k = 0; k < m_items.size(); ++k) {
+    m_leafBoxes[k] = itemBoxes[m_items[k]];
+  }
 }
 
 void AabbTree::buildRange(const std::vector<Aabb>& itemBoxes, const std::vector<Vec3>& centres, Index begin,

@@ -65,7 +65,9 @@ class AabbTree {
       }
       if (node.count > 0) {
         for (Index k = node.first; k < node.first + node.count; ++k) {
-          visit(m_items[k]);
+          if (test(m_leafBoxes[k])) {
+            visit(m_items[k]);
+          }
         }
       } else {
         stack[top++] = node.first;
@@ -79,6 +81,7 @@ class AabbTree {
 
   std::vector<Node> m_nodes;
   std::vector<Index> m_items;
+  std::vector<Aabb> m_leafBoxes;  ///< item boxes in m_items order, for the test inside leaves
 };
 
 }  // namespace thintool

@@ -61,18 +61,19 @@ inline SegmentTriangleHit intersectSegmentTriangle(const Vec3& origin, const Vec
   // Edge tests.
   const Vec3 s = origin - v0;
   const Real u = dot(s, p) * invDet;
-  if (u < -kBarycentricTolerance || u > 1 + kBarycentricTolerance) {
+  // Written as negated acceptance tests so that a NaN coordinate is a miss.
+  if (!(u >= -kBarycentricTolerance && u <= 1 + kBarycentricTolerance)) {
     return result;
   }
   const Vec3 q = cross(s, e1);
   const Real v = dot(delta, q) * invDet;
-  if (v < -kBarycentricTolerance || u + v > 1 + kBarycentricTolerance) {
+  if (!(v >= -kBarycentricTolerance && u + v <= 1 + kBarycentricTolerance)) {
     return result;
   }
 
   // Depth test along the segment.
   const Real t = dot(e2, q) * invDet;
-  if (t < 0 || t > 1) {
+  if (!(t >= 0 && t <= 1)) {
     return result;
   }
   result.hit = true;
