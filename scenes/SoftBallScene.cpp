@@ -54,7 +54,17 @@ const char* algorithmName(Algorithm algorithm) {
   return "ThinTool (E's soft settings)";
 }
 
-const char* toolShapeName(ToolShape shape) { return shape == ToolShape::Plate ? "plate" : "needle"; }
+const char* toolShapeName(ToolShape shape) {
+  switch (shape) {
+    case ToolShape::Plate:
+      return "plate";
+    case ToolShape::Needle:
+      return "needle";
+    case ToolShape::SplitPlate:
+      break;
+  }
+  return "split plate";
+}
 
 struct SoftBallScene::Bullet {
   std::unique_ptr<btCollisionConfiguration> configuration;
@@ -66,6 +76,8 @@ struct SoftBallScene::Bullet {
   btDefaultMotionState groundMotion{btTransform(btQuaternion::getIdentity(), btVector3(0, -1, 0))};
   std::unique_ptr<btRigidBody> ground;
   std::unique_ptr<btBoxShape> toolShape;
+  std::unique_ptr<btBoxShape> halfShape;
+  std::unique_ptr<btCompoundShape> compound;
   btDefaultMotionState toolMotion{
       btTransform(btQuaternion::getIdentity(), btVector3(0, btScalar(kParkedHeight), 0))};
   std::unique_ptr<btRigidBody> tool;
@@ -98,15 +110,24 @@ SoftBallScene::SoftBallScene(const SceneSettings& settings) : m_settings(setting
   m_ball->m_cfg.kKHR = btScalar(variant.kKHR);
   m_ball->m_cfg.piterations = variant.positionIterations;
   // The same damping per second at every time step.
-  m_ball->m_cfg.kDP = btScalar(1 - std::pow(0.95, 60 * settings.timeStep));
+  m_ball->m_cfg.kDP = btScalar(1 - std::pow(0.95, 60 * settings.timeStep / settings.substeps));
   m_ball->setTotalMass(1);
   m_ball->getCollisionShape()->setMargin(btScalar(variant.margin));
   m_world->addSoftBody(m_ball);
 
-  const btVector3 half = settings.tool == ToolShape::Plate ? btVector3(0.4, 0.01, 0.4) : btVector3(0.5, 0.01, 0.01);
+  const btVector3 half = settings.tool == ToolShape::Needle ? btVector3(0.5, 0.01, 0.01) : btVector3(0.4, 0.01, 0.4);
   b.toolShape = std::make_unique<btBoxShape>(half);
   b.toolShape->setMargin(btScalar(0.001));
-  b.tool = std::make_unique<btRigidBody>(btRigidBody::btRigidBodyConstructionInfo(0, &b.toolMotion, b.toolShape.get()));
+  btCollisionShape* toolShape = b.toolShape.get();
+  if (settings.tool == ToolShape::SplitPlate) {
+    b.halfShape = std::make_unique<btBoxShape>(btVector3(0.2, 0.01, 0.4));
+    b.halfShape->setMargin(btScalar(0.001));
+    b.compound = std::make_unique<btCompoundShape>();
+    b.compound->addChildShape(btTransform(btQuaternion::getIdentity(), btVector3(-0.2, 0, 0)), b.halfShape.get());
+    b.compound->addChildShape(btTransform(btQuaternion::getIdentity(), btVector3(0.2, 0, 0)), b.halfShape.get());
+    toolShape = b.compound.get();
+  }
+  b.tool = std::make_unique<btRigidBody>(btRigidBody::btRigidBodyConstructionInfo(0, &b.toolMotion, toolShape));
   b.tool->setCollisionFlags(b.tool->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
   b.tool->setActivationState(DISABLE_DEACTIVATION);
   m_tool = b.tool.get();
@@ -137,10 +158,31 @@ void SoftBallScene::settle() {
 
 double SoftBallScene::step(const btTransform& toolPose) {
   m_bullet->toolMotion.setWorldTransform(toolPose);
+  return step();
+}
+
+double SoftBallScene::step() {
   const btScalar dt = btScalar(m_settings.timeStep);
   const auto start = std::chrono::steady_clock::now();
-  m_world->stepSimulation(dt, 1, dt);
+  m_world->stepSimulation(dt, m_settings.substeps, dt / btScalar(m_settings.substeps));
   return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+}
+
+void SoftBallScene::makeToolDynamic(double mass, const btTransform& pose) {
+  m_world->removeRigidBody(m_tool);
+  btVector3 inertia;
+  m_tool->getCollisionShape()->calculateLocalInertia(btScalar(mass), inertia);
+  m_tool->setMassProps(btScalar(mass), inertia);
+  m_tool->setCollisionFlags(m_tool->getCollisionFlags() & ~btCollisionObject::CF_KINEMATIC_OBJECT);
+  m_bullet->toolMotion.setWorldTransform(pose);
+  m_tool->setWorldTransform(pose);
+  m_tool->setInterpolationWorldTransform(pose);
+  m_tool->setLinearVelocity(btVector3(0, 0, 0));
+  m_tool->setAngularVelocity(btVector3(0, 0, 0));
+  // Held level, as a tool in a hand or on a device arm is: it may only translate.
+  m_tool->setAngularFactor(0);
+  m_tool->updateInertiaTensor();
+  m_world->addRigidBody(m_tool);
 }
 
 ToolBox SoftBallScene::toolBox() const {

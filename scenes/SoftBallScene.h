@@ -33,8 +33,9 @@ enum class Algorithm {
 const char* algorithmName(Algorithm algorithm);
 
 enum class ToolShape {
-  Plate,   ///< 0.8 × 0.02 × 0.8 m, thin along y
-  Needle,  ///< a bar 1.0 × 0.02 × 0.02 m along x
+  Plate,       ///< 0.8 × 0.02 × 0.8 m, thin along y
+  Needle,      ///< a bar 1.0 × 0.02 × 0.02 m along x
+  SplitPlate,  ///< the plate as a btCompoundShape of two 0.4 m halves side by side
 };
 const char* toolShapeName(ToolShape shape);
 
@@ -44,6 +45,7 @@ struct SceneSettings {
   double timeStep = 1.0 / 60;  ///< s
   int ballResolution = 63;     ///< btSoftBodyHelpers::CreateEllipsoid's res: 63 gives 128 faces
   double settleSeconds = 2;
+  int substeps = 1;  ///< internal steps per timeStep: stepSimulation(timeStep, substeps, timeStep / substeps)
   thintool::ToolOptions toolOptions;  ///< used when algorithm is ThinTool
 };
 
@@ -60,6 +62,11 @@ class SoftBallScene {
   void settle();
   /// Moves the tool to toolPose and steps once; returns the wall time of stepSimulation (µs).
   double step(const btTransform& toolPose);
+  /// Steps once without touching the tool (a dynamic tool moves by itself).
+  double step();
+  /// Turns the tool into a dynamic body of the given mass (kg), released at pose at rest and held
+  /// level (angular factor 0).
+  void makeToolDynamic(double mass, const btTransform& pose);
 
   btSoftRigidDynamicsWorld& world() { return *m_world; }
   btSoftBody& ball() { return *m_ball; }

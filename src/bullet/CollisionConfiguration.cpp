@@ -82,6 +82,8 @@ CollisionConfiguration::CollisionConfiguration(const btDefaultCollisionConstruct
 
 CollisionConfiguration::~CollisionConfiguration() = default;
 
+int CollisionConfiguration::algorithmSize() { return static_cast<int>(sizeof(detail::ToolAlgorithm)); }
+
 btCollisionAlgorithm* CollisionConfiguration::createAlgorithm(btCollisionAlgorithmConstructionInfo& info,
                                                               const btCollisionObjectWrapper* body0,
                                                               const btCollisionObjectWrapper* body1, bool swapped,

@@ -38,6 +38,7 @@ struct PairState {
   double detectionMicroseconds = 0;
   double responseMicroseconds = 0;
   Index rejectedCorrections = 0;
+  Index solverContactsSkipped = 0;
   bool unsupported = false;
   bool invalidPose = false;
 
@@ -49,6 +50,7 @@ struct PairState {
     detectionMicroseconds = 0;
     responseMicroseconds = 0;
     rejectedCorrections = 0;
+    solverContactsSkipped = 0;
     unsupported = false;
     invalidPose = false;
   }

@@ -9,6 +9,7 @@
 #include <BulletSoftBody/btSoftBody.h>
 
 #include <algorithm>
+#include <limits>
 
 namespace thintool {
 
@@ -61,6 +62,7 @@ const ToolStepReport& Tool::report() {
     diagnostics.detection.accumulate(state.counters);
     diagnostics.nodesMoved += static_cast<Index>(state.corrections.size()) - state.rejectedCorrections;
     diagnostics.rejectedCorrections += state.rejectedCorrections;
+    diagnostics.solverContactsSkipped += state.solverContactsSkipped;
     diagnostics.detectionMicroseconds += state.detectionMicroseconds;
     diagnostics.responseMicroseconds += state.responseMicroseconds;
     diagnostics.unsupportedPairs += state.unsupported ? 1 : 0;
@@ -85,9 +87,13 @@ const ToolStepReport& Tool::report() {
       for (int k = 0; k < 3; ++k) {
         point += toVec3(face.m_n[k]->m_x) * contact.barycentric[k];
       }
-      const Vec3 normal = piecePose.applyToDirection(model.normals[contact.toolNode]);
-      const Vec3 surfacePoint = piecePose.apply(model.positions[contact.toolNode]);
-      const Real penetration = -dot(point - surfacePoint, normal);
+      // Inside a convex piece, the depth is the distance to the nearest face plane.
+      const Vec3 local = piecePose.applyInverse(point);
+      Real outside = -std::numeric_limits<Real>::max();
+      for (const Plane& plane : model.planes) {
+        outside = std::max(outside, plane.signedDistance(local));
+      }
+      const Real penetration = -outside;
       if (penetration > diagnostics.maxRemainingPenetration) {
         diagnostics.maxRemainingPenetration = penetration;
       }

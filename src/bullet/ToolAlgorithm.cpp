@@ -135,6 +135,8 @@ void ToolAlgorithm::processCollision(const btCollisionObjectWrapper* body0, cons
       rigidBody != nullptr && !rigidBody->isStaticOrKinematicObject() ? const_cast<btRigidBody*>(rigidBody) : nullptr;
   const bool addSolverContacts =
       options.response.kind == ResponseKind::Constraint && options.response.solverContacts;
+  // No node can sensibly be carried farther than the soft body is wide within one step.
+  const btScalar largestCarry = (softBody.m_bounds[1] - softBody.m_bounds[0]).length();
   for (const NodeCorrection& correction : state.corrections) {
     if (!isFinite(correction.displacement) || !isFinite(correction.planeNormal)) {
       ++state.rejectedCorrections;
@@ -144,8 +146,20 @@ void ToolAlgorithm::processCollision(const btCollisionObjectWrapper* body0, cons
     const btVector3 displacement = toBt(correction.displacement);
     node.m_x += displacement;
     if (addSolverContacts) {
-      softBody.m_rcontacts.push_back(
-          solverContact(node, correction, toolObject, dynamicBody, timeStep, btScalar(options.response.solverHardness)));
+      // Bullet's solver also cancels the node's approach relative to the tool's velocity. After a
+      // jump of the tool (a device re-homed, a pose set by hand) that velocity is meaningless and
+      // would fling the node across the scene; such a contact is left to the projection alone.
+      const btVector3 toolMotion =
+          rigidBody != nullptr ? rigidBody->getVelocityInLocalPoint(node.m_x - rigidBody->getCenterOfMassPosition()) *
+                                     timeStep
+                               : btVector3(0, 0, 0);
+      const btScalar approach = (node.m_x - node.m_q - toolMotion).dot(toBt(correction.planeNormal));
+      if (approach < -largestCarry) {
+        ++state.solverContactsSkipped;
+      } else {
+        softBody.m_rcontacts.push_back(solverContact(node, correction, toolObject, dynamicBody, timeStep,
+                                                     btScalar(options.response.solverHardness)));
+      }
     }
     if (dynamicBody != nullptr) {
       // The node's change of momentum, taken from the tool.

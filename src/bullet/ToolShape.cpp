@@ -96,8 +96,13 @@ ConvexMesh hullOf(const std::vector<btVector3>& points) {
   }
   btConvexHullComputer hull;
   hull.compute(coordinates.data(), 3 * sizeof(double), static_cast<int>(points.size()), 0, 0);
+  // The computer rounds coordinates to a fixed-point grid and merges faces that are coplanar on
+  // it. The input points themselves are exact; where they leave a merged face bent beyond the
+  // convexity tolerance (many nearly coplanar support points), its own vertices are used.
   for (int i = 0; i < hull.vertices.size(); ++i) {
-    mesh.vertices.push_back(toVec3(hull.vertices[i]));
+    const int original = hull.original_vertex_index[i];
+    mesh.vertices.push_back(original >= 0 && original < static_cast<int>(points.size()) ? toVec3(points[original])
+                                                                                          : toVec3(hull.vertices[i]));
   }
   // Each face is a planar polygon whose edges run counter-clockwise seen from outside.
   for (int f = 0; f < hull.faces.size(); ++f) {
@@ -118,6 +123,11 @@ ConvexMesh hullOf(const std::vector<btVector3>& points) {
   if (sixVolume < 0) {
     for (auto& t : mesh.triangles) {
       std::swap(t[1], t[2]);
+    }
+  }
+  if (!validateConvexMesh(mesh).empty()) {
+    for (int i = 0; i < hull.vertices.size(); ++i) {
+      mesh.vertices[i] = toVec3(hull.vertices[i]);
     }
   }
   return mesh;

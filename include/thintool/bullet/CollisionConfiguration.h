@@ -52,6 +52,8 @@ class CollisionConfiguration : public btSoftBodyRigidBodyCollisionConfiguration 
 
   /// The tool registered for object, or nullptr.
   Tool* findTool(const btCollisionObject& object) const;
+  /// Bytes ThinTool's collision algorithm takes from the dispatcher's pool.
+  static int algorithmSize();
   std::size_t toolCount() const { return m_tools.size(); }
 
  private:

@@ -30,8 +30,9 @@ struct ToolDiagnostics {
   DetectionCounters detection;  ///< summed over the tool's pieces and soft bodies
   Index pairs = 0;              ///< (piece, soft body) pairs processed in the step
   Index nodesMoved = 0;         ///< soft nodes the response moved
-  /// Deepest any contacted soft face still lies inside the tool after the step's solve (m):
-  /// what the soft solver's links and pressure pushed back in. Measured when the report is read.
+  /// Deepest any contacted soft face's hit point still lies inside the tool after the step's
+  /// solve (m), measured from the tool's nearest face: what the soft solver's links and pressure
+  /// pushed back in. Measured when the report is read.
   Real maxRemainingPenetration = 0;
   double detectionMicroseconds = 0;
   double responseMicroseconds = 0;
@@ -40,6 +41,9 @@ struct ToolDiagnostics {
   Index unsupportedPairs = 0;
   /// Soft nodes whose correction was not finite and was not written (never expected).
   Index rejectedCorrections = 0;
+  /// Solver contacts not handed to Bullet because the tool's velocity would have carried their
+  /// node farther than the soft body is wide in one step: the tool jumped rather than moved.
+  Index solverContactsSkipped = 0;
   /// Pairs skipped because the tool's transform was not finite.
   Index invalidPosePairs = 0;
 };

@@ -1,0 +1,116 @@
+// SPDX-License-Identifier: Zlib
+// Copyright (c) 2026 The ThinTool developers
+#include <thintool/thintool.h>
+
+#include <BulletSoftBody/btDefaultSoftBodySolver.h>
+#include <BulletSoftBody/btSoftBodyRigidBodyCollisionConfiguration.h>
+#include <BulletSoftBody/btSoftRigidDynamicsWorld.h>
+#include <LinearMath/btPoolAllocator.h>
+#include <btBulletDynamicsCommon.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+
+#include <memory>
+#include <string>
+
+namespace thintool {
+namespace {
+
+// A world built on a given collision configuration, and one kinematic body to register.
+struct World {
+  explicit World(std::unique_ptr<btCollisionConfiguration> config)
+      : configuration(std::move(config)),
+        dispatcher(configuration.get()),
+        world(&dispatcher, &broadphase, &solver, configuration.get(), &softSolver),
+        motion(btTransform::getIdentity()),
+        body(btRigidBody::btRigidBodyConstructionInfo(0, &motion, &box)) {
+    world.addRigidBody(&body);
+  }
+  ~World() { world.removeRigidBody(&body); }
+
+  std::unique_ptr<btCollisionConfiguration> configuration;
+  btCollisionDispatcher dispatcher;
+  btDbvtBroadphase broadphase;
+  btSequentialImpulseConstraintSolver solver;
+  btDefaultSoftBodySolver softSolver;
+  btSoftRigidDynamicsWorld world;
+  btBoxShape box{btVector3(0.4, 0.01, 0.4)};
+  btDefaultMotionState motion;
+  btRigidBody body;
+};
+
+std::string errorOf(const std::function<void()>& call) {
+  try {
+    call();
+  } catch (const Error& error) {
+    return error.what();
+  }
+  return "";
+}
+
+TEST(Configuration, PoolSlotsFitThinToolsAlgorithm) {
+  btDefaultCollisionConstructionInfo info;
+  info.m_customCollisionAlgorithmMaxElementSize = 0;
+  CollisionConfiguration configuration(info);
+  EXPECT_GE(configuration.getCollisionAlgorithmPool()->getElementSize(), CollisionConfiguration::algorithmSize());
+}
+
+TEST(Configuration, AWorldWithoutThinToolsConfigurationIsAClearError) {
+  World stock(std::make_unique<btSoftBodyRigidBodyCollisionConfiguration>());
+  ToolOptions options;
+  options.name = "spatula";
+  const std::string message = errorOf([&] { addTool(stock.world, stock.body, options); });
+  EXPECT_NE(message.find("spatula"), std::string::npos) << message;
+  EXPECT_NE(message.find("thintool::CollisionConfiguration"), std::string::npos) << message;
+}
+
+TEST(Configuration, RegistersOnceAndUnregisters) {
+  World w(std::make_unique<CollisionConfiguration>());
+  Tool& tool = addTool(w.world, w.body);
+  EXPECT_EQ(tool.name(), "tool 1");
+  EXPECT_EQ(findTool(w.world, w.body), &tool);
+  EXPECT_EQ(w.body.getActivationState(), DISABLE_DEACTIVATION);
+  EXPECT_NE(errorOf([&] { addTool(w.world, w.body); }).find("already registered"), std::string::npos);
+  EXPECT_TRUE(removeTool(w.world, w.body));
+  EXPECT_EQ(findTool(w.world, w.body), nullptr);
+  EXPECT_FALSE(removeTool(w.world, w.body));
+}
+
+TEST(Configuration, InvalidOptionsNameTheToolAndTheField) {
+  World w(std::make_unique<CollisionConfiguration>());
+  ToolOptions options;
+  options.name = "clamp jaw";
+  options.response.stiffness = -5;
+  std::string message = errorOf([&] { addTool(w.world, w.body, options); });
+  EXPECT_NE(message.find("clamp jaw"), std::string::npos) << message;
+  EXPECT_NE(message.find("response.stiffness"), std::string::npos) << message;
+
+  options = ToolOptions{};
+  options.association.enabled = false;  // check 1 still on
+  message = errorOf([&] { addTool(w.world, w.body, options); });
+  EXPECT_NE(message.find("filters.check1"), std::string::npos) << message;
+
+  options = ToolOptions{};
+  options.sampling.spacing = std::nan("");
+  message = errorOf([&] { addTool(w.world, w.body, options); });
+  EXPECT_NE(message.find("sampling.spacing"), std::string::npos) << message;
+  EXPECT_EQ(findTool(w.world, w.body), nullptr) << "a failed registration leaves nothing behind";
+  EXPECT_NO_THROW(addTool(w.world, w.body, ToolOptions::rayOnly()));
+}
+
+TEST(Configuration, NonConvexShapesAreRejected) {
+  World w(std::make_unique<CollisionConfiguration>());
+  btTriangleMesh mesh;
+  mesh.addTriangle(btVector3(0, 0, 0), btVector3(1, 0, 0), btVector3(0, 0, 1));
+  btBvhTriangleMeshShape concave(&mesh, true);
+  w.body.setCollisionShape(&concave);
+  const std::string message = errorOf([&] { addTool(w.world, w.body); });
+  EXPECT_NE(message.find("not convex"), std::string::npos) << message;
+  w.body.setCollisionShape(&w.box);
+}
+
+}  // namespace
+}  // namespace thintool

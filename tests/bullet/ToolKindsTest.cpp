@@ -1,0 +1,117 @@
+// SPDX-License-Identifier: Zlib
+// Copyright (c) 2026 The ThinTool developers
+//
+// Kinematic tools with substeps, dynamic tools that feel the tissue, compound tools, and tools
+// registered after their pairs already exist.
+
+#include "SoftBallScene.h"
+
+#include <BulletSoftBody/btSoftBody.h>
+#include <BulletSoftBody/btSoftRigidDynamicsWorld.h>
+#include <btBulletDynamicsCommon.h>
+
+#include <gtest/gtest.h>
+
+namespace thintool::scenes {
+namespace {
+
+TEST(ToolKinds, KinematicToolWithSubsteps) {
+  // The pose jumps in the first of four substeps; the other three see the tool at rest.
+  PressSettings settings;
+  settings.scene.timeStep = 1.0 / 60;
+  settings.scene.substeps = 4;
+  settings.speed = 1;
+  const PressResult r = runPress(settings);
+  EXPECT_EQ(r.metrics.crossed, 0);
+  EXPECT_FALSE(r.metrics.everInside);
+  EXPECT_GT(r.maxContacts, 0);
+}
+
+TEST(ToolKinds, CompoundToolUsesEveryChild) {
+  PressSettings settings;
+  settings.scene.tool = ToolShape::SplitPlate;
+  settings.scene.timeStep = 1.0 / 60;
+  settings.speed = 1;
+  const PressResult r = runPress(settings);
+  EXPECT_EQ(r.metrics.crossed, 0);
+  EXPECT_FALSE(r.metrics.everInside);
+
+  SceneSettings sceneSettings;
+  sceneSettings.tool = ToolShape::SplitPlate;
+  SoftBallScene scene(sceneSettings);
+  ASSERT_EQ(scene.tool()->pieceCount(), 2u);
+  scene.settle();
+  const btTransform pressed(btQuaternion::getIdentity(), btVector3(0, btScalar(scene.ballTop() - 0.01), 0));
+  scene.step(pressed);
+  bool seen[2] = {false, false};
+  for (const auto& contact : scene.tool()->report().contacts) {
+    ASSERT_LT(contact.piece, 2u);
+    seen[contact.piece] = true;
+    EXPECT_EQ(contact.softBody, &scene.ball());
+  }
+  EXPECT_TRUE(seen[0] && seen[1]) << "both halves touch the top of the ball";
+}
+
+TEST(ToolKinds, DynamicToolRestsOnTheBallAndFeelsIt) {
+  SceneSettings settings;
+  SoftBallScene scene(settings);
+  scene.settle();
+  const double top = scene.ballTop();
+  scene.makeToolDynamic(0.5, btTransform(btQuaternion::getIdentity(), btVector3(0, btScalar(top + 0.3), 0)));
+  double meanForce = 0;
+  int counted = 0;
+  for (int i = 0; i < 300; ++i) {
+    scene.step();
+    if (i >= 180) {
+      meanForce += scene.tool()->report().wrench.force.y;
+      ++counted;
+    }
+  }
+  meanForce /= counted;
+  const btRigidBody& plate = scene.toolBody();
+  EXPECT_GT(plate.getWorldTransform().getOrigin().y(), scene.ballMeanHeight()) << "it did not sink into the ball";
+  EXPECT_LT(plate.getLinearVelocity().length(), 0.2) << "it is coming to rest";
+  EXPECT_GT(meanForce, 0) << "the tissue holds it up";
+  // Its weight is 5 N; Bullet's solver contacts carry part of it as well, so this is a lower share.
+  EXPECT_LT(meanForce, 10);
+}
+
+TEST(ToolKinds, RegisteringAfterThePairExistsReroutesIt) {
+  SceneSettings settings;
+  settings.algorithm = Algorithm::ThinTool;
+  SoftBallScene scene(settings);
+  scene.settle();
+  // Pressing 5 mm a step, so that every step has contacts to find.
+  btTransform pose(btQuaternion::getIdentity(), btVector3(0, btScalar(scene.ballTop()), 0));
+  auto pressFurther = [&] {
+    pose.getOrigin().setY(pose.getOrigin().y() - btScalar(0.005));
+    scene.step(pose);
+  };
+  pressFurther();
+  pressFurther();
+  ASSERT_GT(scene.tool()->report().diagnostics.detection.colliding, 0u);
+  ASSERT_TRUE(thintool::removeTool(scene.world(), scene.toolBody()));
+  pressFurther();  // the stock handler's step
+  Tool& again = thintool::addTool(scene.world(), scene.toolBody());
+  pressFurther();
+  EXPECT_GT(again.report().diagnostics.detection.colliding, 0u);
+}
+
+TEST(ToolKinds, ATeleportedToolDoesNotFlingTheTissue) {
+  // The tool waits 50 m above the ball while it settles, then jumps onto it in one step: Bullet
+  // derives a velocity of kilometres per second from that jump.
+  SceneSettings settings;
+  SoftBallScene scene(settings);
+  scene.settle();
+  scene.step(btTransform(btQuaternion::getIdentity(), btVector3(0, btScalar(scene.ballTop() - 0.005), 0)));
+  const ToolDiagnostics& d = scene.tool()->report().diagnostics;
+  EXPECT_GT(d.detection.colliding, 0u);
+  EXPECT_GT(d.solverContactsSkipped, 0u);
+  const btSoftBody& ball = scene.ball();
+  for (int i = 0; i < ball.m_nodes.size(); ++i) {
+    EXPECT_LT(ball.m_nodes[i].m_x.length(), 5) << "node " << i;
+  }
+}
+
+}  // namespace
+}  // namespace thintool::scenes
