@@ -9,14 +9,19 @@
 #include <thintool/detection/Detection.h>
 #include <thintool/response/Response.h>
 
+#include <memory>
 #include <vector>
 
+class btRigidBody;
 class btSoftBody;
 struct btDbvtNode;
 
 namespace thintool::detail {
 
 struct PairState {
+  PairState();
+  ~PairState();
+
   btSoftBody* softBody = nullptr;
   Index piece = 0;
 
@@ -29,6 +34,11 @@ struct PairState {
   std::vector<const btDbvtNode*> traversalStack;
   /// Face count the topology facts below were computed for.
   int facesSeen = -1;
+  /// The piece's pose when the pair was last processed: the start of this step.
+  Pose previousPose;
+  bool hasPreviousPose = false;
+  /// Bodies that the solver contacts holding moved nodes refer to, one per node (see ToolAlgorithm).
+  std::vector<std::unique_ptr<btRigidBody>> holdBodies;
 
   // Results of the latest step.
   std::vector<Contact> contacts;
@@ -38,7 +48,6 @@ struct PairState {
   double detectionMicroseconds = 0;
   double responseMicroseconds = 0;
   Index rejectedCorrections = 0;
-  Index solverContactsSkipped = 0;
   bool unsupported = false;
   bool invalidPose = false;
 
@@ -50,7 +59,6 @@ struct PairState {
     detectionMicroseconds = 0;
     responseMicroseconds = 0;
     rejectedCorrections = 0;
-    solverContactsSkipped = 0;
     unsupported = false;
     invalidPose = false;
   }
@@ -59,6 +67,7 @@ struct PairState {
   void separate() {
     clearResults();
     history.reset();
+    hasPreviousPose = false;
     live = false;
   }
 };

@@ -117,6 +117,7 @@ void gatherPatch(btSoftBody& softBody, const Aabb& worldBox, PairState& state) {
            if (vertex == kInvalidIndex) {
              vertex = patch.vertexCount();
              patch.positions.push_back(toVec3(node->m_x));
+             patch.previousPositions.push_back(toVec3(node->m_q));
              patch.inverseMasses.push_back(node->m_im);
              patch.nodeIds.push_back(id);
            }

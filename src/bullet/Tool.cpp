@@ -13,6 +13,11 @@
 
 namespace thintool {
 
+namespace detail {
+PairState::PairState() = default;
+PairState::~PairState() = default;
+}  // namespace detail
+
 Tool::Tool(btRigidBody& body, const ToolOptions& options, std::vector<ToolModel> pieces,
            std::vector<Pose> pieceTransforms)
     : m_body(body), m_options(options), m_pieces(std::move(pieces)), m_pieceTransforms(std::move(pieceTransforms)) {
@@ -62,7 +67,6 @@ const ToolStepReport& Tool::report() {
     diagnostics.detection.accumulate(state.counters);
     diagnostics.nodesMoved += static_cast<Index>(state.corrections.size()) - state.rejectedCorrections;
     diagnostics.rejectedCorrections += state.rejectedCorrections;
-    diagnostics.solverContactsSkipped += state.solverContactsSkipped;
     diagnostics.detectionMicroseconds += state.detectionMicroseconds;
     diagnostics.responseMicroseconds += state.responseMicroseconds;
     diagnostics.unsupportedPairs += state.unsupported ? 1 : 0;

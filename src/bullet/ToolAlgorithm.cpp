@@ -15,6 +15,7 @@
 #include <BulletSoftBody/btSoftBodySolvers.h>
 
 #include <chrono>
+#include <memory>
 
 namespace thintool::detail {
 
@@ -36,25 +37,28 @@ Aabb worldBounds(const Aabb& local, const Pose& pose) {
   return box;
 }
 
-// The solver contact that keeps a moved node out of the tool during Bullet's position
-// iterations, built as Bullet's CollideSDF_RS builds its own, with the entry-side plane.
-btSoftBody::RContact solverContact(btSoftBody::Node& node, const NodeCorrection& correction,
-                                   const btCollisionObject& toolObject, const btRigidBody* dynamicBody,
-                                   btScalar timeStep, btScalar hardness) {
+// The solver contact that holds a moved node, built as Bullet's CollideSDF_RS builds its own.
+// PSolve_RContacts corrects x -= n·(dn + c4·dp) while dn <= 0, where dn is the node's motion this
+// step relative to the contact body's, (x - q - v_body·dt)·n. A body whose velocity is the node's
+// own projected motion makes dn = 0 where the projection left the node, and with c4 = 0 the
+// contact restores that position along n whenever the links or the pressure pull the node back
+// in, and never pulls it out further: a one-sided hold. The body has zero inverse mass, so the
+// solver's impulses on it go nowhere; the tool's reaction comes from the projection.
+btSoftBody::RContact holdContact(btSoftBody::Node& node, const Vec3& normal, btRigidBody& holdBody,
+                                 btScalar timeStep) {
+  holdBody.setLinearVelocity((node.m_x - node.m_q) / timeStep);
+  holdBody.setAngularVelocity(btVector3(0, 0, 0));
   btSoftBody::RContact contact;
-  contact.m_cti.m_colObj = &toolObject;
-  contact.m_cti.m_normal = toBt(correction.planeNormal);
-  contact.m_cti.m_offset = btScalar(correction.planeOffset);
+  contact.m_cti.m_colObj = &holdBody;
+  contact.m_cti.m_normal = toBt(normal);
+  contact.m_cti.m_offset = -contact.m_cti.m_normal.dot(node.m_x);
   contact.m_node = &node;
-  const btScalar inverseMassTool = dynamicBody != nullptr ? dynamicBody->getInvMass() : btScalar(0);
   static const btMatrix3x3 zero(0, 0, 0, 0, 0, 0, 0, 0, 0);
-  const btMatrix3x3& inverseInertia = dynamicBody != nullptr ? dynamicBody->getInvInertiaTensorWorld() : zero;
-  const btVector3 arm = node.m_x - toolObject.getWorldTransform().getOrigin();
-  contact.m_c0 = ImpulseMatrix(timeStep, node.m_im, inverseMassTool, inverseInertia, arm);
-  contact.m_c1 = arm;
+  contact.m_c0 = ImpulseMatrix(timeStep, node.m_im, 0, zero, btVector3(0, 0, 0));
+  contact.m_c1 = btVector3(0, 0, 0);
   contact.m_c2 = node.m_im * timeStep;
   contact.m_c3 = 1;  // frictionless: the tangential motion is left alone
-  contact.m_c4 = hardness;
+  contact.m_c4 = 0;  // no positional term: the projection already placed the node
   return contact;
 }
 
@@ -127,39 +131,31 @@ void ToolAlgorithm::processCollision(const btCollisionObjectWrapper* body0, cons
   const auto detected = Clock::now();
 
   const btScalar timeStep = softBody.m_sst.sdt;
-  computeResponse(model, pose, state.patch, state.contacts, parameters.skin, timeStep, options.response,
+  const Pose previousPose = state.hasPreviousPose ? state.previousPose : pose;
+  computeResponse(model, pose, previousPose, state.patch, state.contacts, parameters.skin, timeStep, options.response,
                   m_tool.m_responseWorkspace, state.corrections, state.wrench);
+  state.previousPose = pose;
+  state.hasPreviousPose = true;
 
   const btRigidBody* rigidBody = btRigidBody::upcast(&toolObject);
   btRigidBody* dynamicBody =
       rigidBody != nullptr && !rigidBody->isStaticOrKinematicObject() ? const_cast<btRigidBody*>(rigidBody) : nullptr;
-  const bool addSolverContacts =
-      options.response.kind == ResponseKind::Constraint && options.response.solverContacts;
-  // No node can sensibly be carried farther than the soft body is wide within one step.
-  const btScalar largestCarry = (softBody.m_bounds[1] - softBody.m_bounds[0]).length();
+  const bool holdInSolver = options.response.kind == ResponseKind::Constraint && options.response.holdInSolver;
+  Index holdsUsed = 0;
   for (const NodeCorrection& correction : state.corrections) {
-    if (!isFinite(correction.displacement) || !isFinite(correction.planeNormal)) {
+    if (!isFinite(correction.displacement) || !isFinite(correction.normal)) {
       ++state.rejectedCorrections;
       continue;
     }
     btSoftBody::Node& node = softBody.m_nodes[static_cast<int>(state.patch.nodeIds[correction.vertex])];
     const btVector3 displacement = toBt(correction.displacement);
     node.m_x += displacement;
-    if (addSolverContacts) {
-      // Bullet's solver also cancels the node's approach relative to the tool's velocity. After a
-      // jump of the tool (a device re-homed, a pose set by hand) that velocity is meaningless and
-      // would fling the node across the scene; such a contact is left to the projection alone.
-      const btVector3 toolMotion =
-          rigidBody != nullptr ? rigidBody->getVelocityInLocalPoint(node.m_x - rigidBody->getCenterOfMassPosition()) *
-                                     timeStep
-                               : btVector3(0, 0, 0);
-      const btScalar approach = (node.m_x - node.m_q - toolMotion).dot(toBt(correction.planeNormal));
-      if (approach < -largestCarry) {
-        ++state.solverContactsSkipped;
-      } else {
-        softBody.m_rcontacts.push_back(solverContact(node, correction, toolObject, dynamicBody, timeStep,
-                                                     btScalar(options.response.solverHardness)));
+    if (holdInSolver) {
+      if (holdsUsed == state.holdBodies.size()) {
+        state.holdBodies.push_back(
+            std::make_unique<btRigidBody>(btRigidBody::btRigidBodyConstructionInfo(0, nullptr, nullptr)));
       }
+      softBody.m_rcontacts.push_back(holdContact(node, correction.normal, *state.holdBodies[holdsUsed++], timeStep));
     }
     if (dynamicBody != nullptr) {
       // The node's change of momentum, taken from the tool.

@@ -27,8 +27,6 @@ std::string validateToolOptions(const ToolOptions& options) {
             << options.filters.reverseRayLength;
   } else if (!(std::isfinite(options.response.stiffness) && options.response.stiffness > 0)) {
     problem << "response.stiffness must be a finite stiffness > 0 N/m, got " << options.response.stiffness;
-  } else if (!(options.response.solverHardness > 0 && options.response.solverHardness <= 1)) {
-    problem << "response.solverHardness must lie in (0, 1], got " << options.response.solverHardness;
   }
   return problem.str();
 }

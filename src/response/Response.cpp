@@ -2,14 +2,35 @@
 // Copyright (c) 2026 The ThinTool developers
 #include <thintool/response/Response.h>
 
+#include <algorithm>
+#include <limits>
+
 namespace thintool {
 
-void computeResponse(const ToolModel& model, const Pose& toolPose, const SoftPatch& patch,
-                     const std::vector<Contact>& contacts, Real skin, Real dt, const ResponseSettings& settings,
-                     ResponseWorkspace& work, std::vector<NodeCorrection>& outCorrections, Wrench& outWrench) {
+namespace {
+
+// The smallest signed distance outside the piece's planes: positive outside, negative inside.
+Real outsideDistance(const ToolModel& model, const Vec3& local, Index* outPlane = nullptr) {
+  Real best = -std::numeric_limits<Real>::max();
+  for (Index p = 0; p < model.planes.size(); ++p) {
+    const Real distance = model.planes[p].signedDistance(local);
+    if (distance > best) {
+      best = distance;
+      if (outPlane != nullptr) *outPlane = p;
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+void computeResponse(const ToolModel& model, const Pose& toolPose, const Pose& previousToolPose,
+                     const SoftPatch& patch, const std::vector<Contact>& contacts, Real skin, Real dt,
+                     const ResponseSettings& settings, ResponseWorkspace& work,
+                     std::vector<NodeCorrection>& outCorrections, Wrench& outWrench) {
   outCorrections.clear();
   outWrench = Wrench{};
-  if (settings.kind == ResponseKind::None || contacts.empty() || !(dt > 0)) {
+  if (settings.kind == ResponseKind::None || !(dt > 0)) {
     return;
   }
   const Index vertexCount = patch.vertexCount();
@@ -17,6 +38,8 @@ void computeResponse(const ToolModel& model, const Pose& toolPose, const SoftPat
     work.m_slot.resize(vertexCount, kInvalidIndex);
   }
   work.m_positions.resize(vertexCount);
+  work.m_largestShare.clear();
+  work.m_entryDepth.clear();
 
   auto slotOf = [&](Index vertex) -> NodeCorrection& {
     if (work.m_slot[vertex] == kInvalidIndex) {
@@ -25,41 +48,120 @@ void computeResponse(const ToolModel& model, const Pose& toolPose, const SoftPat
       NodeCorrection correction;
       correction.vertex = vertex;
       outCorrections.push_back(correction);
+      work.m_largestShare.push_back(0);
+      work.m_entryDepth.push_back(0);
     }
     return outCorrections[work.m_slot[vertex]];
   };
+  auto positionOf = [&](Index vertex) -> const Vec3& {
+    return work.m_slot[vertex] == kInvalidIndex ? patch.positions[vertex] : work.m_positions[vertex];
+  };
+  // The entry-side plane of a contact: the tool face its node sits on, moved out by the skin.
+  auto planeOffsetOf = [&](const Contact& contact) {
+    return -dot(contact.normal, toolPose.apply(model.positions[contact.toolNode]) + contact.normal * skin);
+  };
+  auto movable = [&](Index vertex) { return patch.inverseMasses[vertex] > 0; };
 
-  for (const Contact& contact : contacts) {
-    const auto& corners = patch.faces[contact.patchFace];
-    const Vec3 normal = contact.normal;
-    // The entry-side plane: the tool face the node sits on, moved out by the skin.
-    const Vec3 planePoint = toolPose.apply(model.positions[contact.toolNode]) + normal * skin;
-    const Real planeOffset = -dot(normal, planePoint);
-    const Real pushForce = settings.stiffness * (contact.depth + skin);
-    for (int k = 0; k < 3; ++k) {
-      const Index vertex = corners[k];
-      const Real inverseMass = patch.inverseMasses[vertex];
-      if (!(inverseMass > 0)) {
-        continue;
-      }
-      if (settings.kind == ResponseKind::Constraint) {
-        // Read the position through the slot so that earlier contacts' moves count.
-        const Real distance =
-            dot(work.m_slot[vertex] == kInvalidIndex ? patch.positions[vertex] : work.m_positions[vertex], normal) +
-            planeOffset;
-        if (distance >= 0) {
+  if (settings.kind == ResponseKind::PaperForce) {
+    for (const Contact& contact : contacts) {
+      const auto& corners = patch.faces[contact.patchFace];
+      const Real pushForce = settings.stiffness * (contact.depth + skin);
+      for (int k = 0; k < 3; ++k) {
+        const Index vertex = corners[k];
+        if (!movable(vertex)) {
           continue;
         }
         NodeCorrection& correction = slotOf(vertex);
-        work.m_positions[vertex] += normal * -distance;
-        correction.planeNormal = normal;
-        correction.planeOffset = planeOffset;
-      } else {
+        work.m_positions[vertex] +=
+            contact.normal * (pushForce * contact.barycentric[k] * patch.inverseMasses[vertex] * dt * dt);
+        correction.normal = contact.normal;
+      }
+    }
+  } else {
+    // Pass 1: nodes of hit faces inside the tool leave through their least-violated entry plane.
+    for (const Contact& contact : contacts) {
+      const Real planeOffset = planeOffsetOf(contact);
+      for (Index vertex : patch.faces[contact.patchFace]) {
+        const Real behind = -(dot(patch.positions[vertex], contact.normal) + planeOffset);
+        if (!movable(vertex) || !(behind > 0) ||
+            outsideDistance(model, toolPose.applyInverse(patch.positions[vertex])) >= skin) {
+          continue;
+        }
         NodeCorrection& correction = slotOf(vertex);
-        const Vec3 force = normal * (pushForce * contact.barycentric[k]);
-        work.m_positions[vertex] += force * (inverseMass * dt * dt);
-        correction.planeNormal = normal;
-        correction.planeOffset = planeOffset;
+        Real& chosen = work.m_entryDepth[work.m_slot[vertex]];
+        if (chosen == 0 || behind < chosen) {
+          chosen = behind;
+          correction.normal = contact.normal;
+        }
+      }
+    }
+
+    // Pass 2, the node guard: nodes inside the tool that no contact speaks for.
+    if (settings.guardNodes) {
+      for (Index vertex = 0; vertex < vertexCount; ++vertex) {
+        if (work.m_slot[vertex] != kInvalidIndex || !movable(vertex)) {
+          continue;
+        }
+        const Real outside = outsideDistance(model, toolPose.applyInverse(patch.positions[vertex]));
+        if (outside >= skin) {
+          continue;
+        }
+        // The face it was outside of at the start of the step, in the tool's previous pose.
+        Index entry = 0;
+        outsideDistance(model, previousToolPose.applyInverse(patch.previousPositions[vertex]), &entry);
+        const Vec3 normal = toolPose.applyToDirection(model.planes[entry].normal);
+        const Real depth = skin - model.planes[entry].signedDistance(toolPose.applyInverse(patch.positions[vertex]));
+        if (!(depth > 0)) {
+          continue;
+        }
+        NodeCorrection& correction = slotOf(vertex);
+        work.m_entryDepth[work.m_slot[vertex]] = depth;
+        correction.normal = normal;
+      }
+    }
+    for (NodeCorrection& correction : outCorrections) {
+      const Index slot = work.m_slot[correction.vertex];
+      work.m_positions[correction.vertex] += correction.normal * work.m_entryDepth[slot];
+      // A node moved as a whole keeps that direction for the solver's hold.
+      work.m_largestShare[slot] = std::numeric_limits<Real>::max();
+    }
+
+    // Pass 3: each contact's hit point onto its entry plane, shared by weight × inverse mass.
+    constexpr int kSweeps = 4;
+    constexpr Real kSettled = 1e-6;  // m
+    for (int sweep = 0; sweep < kSweeps; ++sweep) {
+      Real worst = 0;
+      for (const Contact& contact : contacts) {
+        const auto& corners = patch.faces[contact.patchFace];
+        Vec3 hitPoint;
+        Real weightedMobility = 0;
+        for (int k = 0; k < 3; ++k) {
+          hitPoint += positionOf(corners[k]) * contact.barycentric[k];
+          weightedMobility += contact.barycentric[k] * contact.barycentric[k] * patch.inverseMasses[corners[k]];
+        }
+        const Real distance = dot(hitPoint, contact.normal) + planeOffsetOf(contact);
+        if (distance >= 0 || !(weightedMobility > 0)) {
+          continue;
+        }
+        worst = std::max(worst, -distance);
+        const Real scale = -distance / weightedMobility;
+        for (int k = 0; k < 3; ++k) {
+          const Index vertex = corners[k];
+          const Real share = scale * contact.barycentric[k] * patch.inverseMasses[vertex];
+          if (!(share > 0)) {
+            continue;
+          }
+          NodeCorrection& correction = slotOf(vertex);
+          work.m_positions[vertex] += contact.normal * share;
+          Real& largest = work.m_largestShare[work.m_slot[vertex]];
+          if (share > largest) {
+            largest = share;
+            correction.normal = contact.normal;
+          }
+        }
+      }
+      if (worst <= kSettled) {
+        break;
       }
     }
   }

@@ -1,15 +1,23 @@
 // SPDX-License-Identifier: Zlib
 // Copyright (c) 2026 The ThinTool developers
 //
-// Pairs without a registered tool keep Bullet's stock behaviour bit for bit: a scene run with
-// ThinTool's configuration and a registered tool, and the same scene on the stock configuration,
-// leave the untouched soft body and the other rigid bodies in exactly the same state.
+// Pairs without a registered tool keep Bullet's stock behaviour bit for bit: they are processed by
+// Bullet's own btSoftRigidCollisionAlgorithm object, and a world with ThinTool's configuration but
+// no tool evolves exactly as a stock world does.
+//
+// Whole-world identity of the other bodies cannot be asked for once a tool changes anything:
+// Bullet's hashed pair cache removes a pair by moving the last one into its slot, so a tool pair
+// that appears or disappears a step earlier reorders every later pair, and with it the order in
+// which another soft body's contacts are generated and solved (Gauss–Seidel). We saw it here:
+// the stock run had the ball-1/plate pair at step 16, the ThinTool run did not, and the second
+// ball's nodes differed in the last bits from step 56 on.
 
 #include <thintool/thintool.h>
 
 #include <BulletSoftBody/btDefaultSoftBodySolver.h>
 #include <BulletSoftBody/btSoftBodyHelpers.h>
 #include <BulletSoftBody/btSoftBodyRigidBodyCollisionConfiguration.h>
+#include <BulletSoftBody/btSoftRigidCollisionAlgorithm.h>
 #include <BulletSoftBody/btSoftRigidDynamicsWorld.h>
 #include <btBulletDynamicsCommon.h>
 
@@ -26,6 +34,9 @@ struct Snapshot {
   std::vector<btScalar> firstBall;   // node positions and velocities
   std::vector<btScalar> secondBall;
   std::vector<btScalar> box;         // transform and velocity of the box dropped on the second ball
+  int stockSoftPairs = 0;            // soft–rigid pairs run by Bullet's own algorithm
+  int thinToolPairs = 0;             // soft–rigid pairs run by another algorithm
+  int toolPairsOnStock = 0;          // pairs with the tool that Bullet's algorithm ran
 };
 
 void append(std::vector<btScalar>& out, const btVector3& v) { out.insert(out.end(), {v.x(), v.y(), v.z()}); }
@@ -96,6 +107,21 @@ Snapshot run(Setup setup) {
   }
 
   Snapshot snapshot;
+  btOverlappingPairCache* pairs = world.getBroadphase()->getOverlappingPairCache();
+  for (int k = 0; k < pairs->getNumOverlappingPairs(); ++k) {
+    const btBroadphasePair& pair = pairs->getOverlappingPairArray()[k];
+    const auto* a = static_cast<const btCollisionObject*>(pair.m_pProxy0->m_clientObject);
+    const auto* b = static_cast<const btCollisionObject*>(pair.m_pProxy1->m_clientObject);
+    const bool soft = btSoftBody::upcast(a) != nullptr || btSoftBody::upcast(b) != nullptr;
+    const bool withTool = a == &plate || b == &plate;
+    if (!soft || pair.m_algorithm == nullptr || (btSoftBody::upcast(a) && btSoftBody::upcast(b))) continue;
+    if (dynamic_cast<btSoftRigidCollisionAlgorithm*>(pair.m_algorithm) != nullptr) {
+      ++snapshot.stockSoftPairs;
+      snapshot.toolPairsOnStock += withTool ? 1 : 0;
+    } else {
+      ++snapshot.thinToolPairs;
+    }
+  }
   appendBall(snapshot.firstBall, *balls[0]);
   appendBall(snapshot.secondBall, *balls[1]);
   append(snapshot.box, box.getWorldTransform().getOrigin());
@@ -117,18 +143,20 @@ bool bitIdentical(const std::vector<btScalar>& a, const std::vector<btScalar>& b
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(btScalar)) == 0;
 }
 
-TEST(StockPairs, UnregisteredPairsMatchAStockRunBitForBit) {
-  const Snapshot stock = run(Setup::Stock);
+TEST(StockPairs, UnregisteredPairsRunOnBulletsOwnAlgorithm) {
   const Snapshot withTool = run(Setup::ThinToolWithTool);
-  EXPECT_TRUE(bitIdentical(stock.secondBall, withTool.secondBall));
-  EXPECT_TRUE(bitIdentical(stock.box, withTool.box));
-  // The tool's own ball is ThinTool's: it must differ, or the test proved nothing.
-  EXPECT_FALSE(bitIdentical(stock.firstBall, withTool.firstBall));
+  // Ground–ball 1, ground–ball 2 and box–ball 2 are Bullet's; plate–ball 1 is ThinTool's.
+  EXPECT_EQ(withTool.stockSoftPairs, 3);
+  EXPECT_EQ(withTool.thinToolPairs, 1);
+  EXPECT_EQ(withTool.toolPairsOnStock, 0);
+  // The tool's own ball is ThinTool's: it must differ from a stock run, or the test proved nothing.
+  EXPECT_FALSE(bitIdentical(run(Setup::Stock).firstBall, withTool.firstBall));
 }
 
 TEST(StockPairs, WithoutToolsThinToolsConfigurationIsStockBullet) {
   const Snapshot stock = run(Setup::Stock);
   const Snapshot none = run(Setup::ThinToolWithoutTool);
+  EXPECT_EQ(none.thinToolPairs, 0);
   EXPECT_TRUE(bitIdentical(stock.firstBall, none.firstBall));
   EXPECT_TRUE(bitIdentical(stock.secondBall, none.secondBall));
   EXPECT_TRUE(bitIdentical(stock.box, none.box));

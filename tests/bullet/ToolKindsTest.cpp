@@ -59,20 +59,25 @@ TEST(ToolKinds, DynamicToolRestsOnTheBallAndFeelsIt) {
   const double top = scene.ballTop();
   scene.makeToolDynamic(0.5, btTransform(btQuaternion::getIdentity(), btVector3(0, btScalar(top + 0.3), 0)));
   double meanForce = 0;
+  double meanVelocity = 0;
+  double lowest = 1e9;
   int counted = 0;
+  const btRigidBody& plate = scene.toolBody();
   for (int i = 0; i < 300; ++i) {
     scene.step();
     if (i >= 180) {
       meanForce += scene.tool()->report().wrench.force.y;
+      meanVelocity += plate.getLinearVelocity().y();
+      lowest = std::min(lowest, double(plate.getWorldTransform().getOrigin().y()));
       ++counted;
     }
   }
   meanForce /= counted;
-  const btRigidBody& plate = scene.toolBody();
-  EXPECT_GT(plate.getWorldTransform().getOrigin().y(), scene.ballMeanHeight()) << "it did not sink into the ball";
-  EXPECT_LT(plate.getLinearVelocity().length(), 0.2) << "it is coming to rest";
-  EXPECT_GT(meanForce, 0) << "the tissue holds it up";
-  // Its weight is 5 N; Bullet's solver contacts carry part of it as well, so this is a lower share.
+  meanVelocity /= counted;
+  EXPECT_GT(lowest, scene.ballMeanHeight()) << "it never sank into the ball";
+  EXPECT_LT(std::abs(meanVelocity), 0.05) << "it bobs on the ball and stays";
+  // Its weight is 5 N, carried by the projection's reaction alone.
+  EXPECT_GT(meanForce, 2.5);
   EXPECT_LT(meanForce, 10);
 }
 
@@ -81,14 +86,13 @@ TEST(ToolKinds, RegisteringAfterThePairExistsReroutesIt) {
   settings.algorithm = Algorithm::ThinTool;
   SoftBallScene scene(settings);
   scene.settle();
-  // Pressing 5 mm a step, so that every step has contacts to find.
-  btTransform pose(btQuaternion::getIdentity(), btVector3(0, btScalar(scene.ballTop()), 0));
+  // From just above the skin, 5 mm a step, so that contact builds up gently and stays.
+  btTransform pose(btQuaternion::getIdentity(), btVector3(0, btScalar(scene.ballTop() + 0.06), 0));
   auto pressFurther = [&] {
     pose.getOrigin().setY(pose.getOrigin().y() - btScalar(0.005));
     scene.step(pose);
   };
-  pressFurther();
-  pressFurther();
+  for (int i = 0; i < 6; ++i) pressFurther();
   ASSERT_GT(scene.tool()->report().diagnostics.detection.colliding, 0u);
   ASSERT_TRUE(thintool::removeTool(scene.world(), scene.toolBody()));
   pressFurther();  // the stock handler's step
@@ -99,14 +103,13 @@ TEST(ToolKinds, RegisteringAfterThePairExistsReroutesIt) {
 
 TEST(ToolKinds, ATeleportedToolDoesNotFlingTheTissue) {
   // The tool waits 50 m above the ball while it settles, then jumps onto it in one step: Bullet
-  // derives a velocity of kilometres per second from that jump.
+  // derives a velocity of kilometres per second from that jump, which must not reach the nodes.
   SceneSettings settings;
   SoftBallScene scene(settings);
   scene.settle();
   scene.step(btTransform(btQuaternion::getIdentity(), btVector3(0, btScalar(scene.ballTop() - 0.005), 0)));
   const ToolDiagnostics& d = scene.tool()->report().diagnostics;
   EXPECT_GT(d.detection.colliding, 0u);
-  EXPECT_GT(d.solverContactsSkipped, 0u);
   const btSoftBody& ball = scene.ball();
   for (int i = 0; i < ball.m_nodes.size(); ++i) {
     EXPECT_LT(ball.m_nodes[i].m_x.length(), 5) << "node " << i;

@@ -7,120 +7,171 @@
 namespace thintool {
 namespace {
 
-// A plate's underside at y = 0 and one soft triangle 3 mm inside it, hit by one node.
+constexpr Real kSkin = 0.001;
+constexpr Real kDt = 0.01;
+
+// A 0.4 × 0.02 × 0.4 plate whose underside is at y = 0, and a soft patch made of given triangles.
 struct Fixture {
   ToolModel model;
   Pose pose;
   SoftPatch patch;
   std::vector<Contact> contacts;
+  ResponseWorkspace workspace;
+  std::vector<NodeCorrection> corrections;
+  Wrench wrench;
 
   Fixture() {
     ToolModelSettings settings;
     settings.sampling.spacing = 0.4;
     model = buildToolModel(makeBoxMesh({0.2, 0.01, 0.2}), settings);
     pose.translation = {0, 0.01, 0};
-    patch.positions = {{-0.1, 0.003, -0.1}, {0.1, 0.003, -0.1}, {0, 0.003, 0.1}};
-    patch.inverseMasses = {2, 2, 0};  // the third node is pinned
-    patch.nodeIds = {0, 1, 2};
-    patch.faces = {{0, 2, 1}};
-    patch.faceIds = {0};
-    Index bottomNode = 0;
-    while (model.normals[bottomNode].y > -0.5) ++bottomNode;
-    Contact contact;
-    contact.toolNode = bottomNode;
-    contact.patchFace = 0;
-    contact.barycentric = {0.25, 0.25, 0.5};
-    contact.depth = 0.003;
-    contact.normal = {0, -1, 0};
-    contacts.push_back(contact);
+  }
+  Index vertex(const Vec3& p, Real inverseMass = 2, const Vec3* previous = nullptr) {
+    patch.positions.push_back(p);
+    patch.previousPositions.push_back(previous != nullptr ? *previous : p);
+    patch.inverseMasses.push_back(inverseMass);
+    patch.nodeIds.push_back(patch.vertexCount() - 1);
+    return patch.vertexCount() - 1;
+  }
+  Index face(Index a, Index b, Index c) {
+    patch.faces.push_back({a, b, c});
+    patch.faceIds.push_back(patch.faceCount() - 1);
+    return patch.faceCount() - 1;
+  }
+  Index nodeFacing(const Vec3& normal) const {
+    Index node = 0;
+    while (dot(model.normals[node], normal) < 0.5) ++node;
+    return node;
+  }
+  void contact(Index faceIndex, const Vec3& normal, const Vec3& barycentric, Real depth) {
+    Contact c;
+    c.toolNode = nodeFacing(normal);
+    c.patchFace = faceIndex;
+    c.barycentric = barycentric;
+    c.depth = depth;
+    c.normal = normal;
+    contacts.push_back(c);
+  }
+  void respond(const ResponseSettings& settings = {}, const Pose* previous = nullptr) {
+    computeResponse(model, pose, previous != nullptr ? *previous : pose, patch, contacts, kSkin, kDt, settings,
+                    workspace, corrections, wrench);
+  }
+  Vec3 finalPosition(Index v) const {
+    for (const NodeCorrection& c : corrections) {
+      if (c.vertex == v) return patch.positions[v] + c.displacement;
+    }
+    return patch.positions[v];
   }
 };
 
-constexpr Real kSkin = 0.001;
-constexpr Real kDt = 0.01;
-
-TEST(Response, ConstraintMovesTheFacesNodesToTheSkinOnTheEntrySide) {
+TEST(Response, NodesInsideTheToolLeaveThroughTheEntrySideAndPinnedNodesStay) {
   Fixture f;
-  ResponseSettings settings;
-  ResponseWorkspace workspace;
-  std::vector<NodeCorrection> corrections;
-  Wrench wrench;
-  computeResponse(f.model, f.pose, f.patch, f.contacts, kSkin, kDt, settings, workspace, corrections, wrench);
-  ASSERT_EQ(corrections.size(), 2u) << "the pinned node stays";
+  const Index a = f.vertex({-0.1, 0.003, -0.1});
+  const Index b = f.vertex({0.1, 0.003, -0.1});
+  const Index pinned = f.vertex({0, 0.003, 0.1}, 0);
+  f.contact(f.face(a, pinned, b), {0, -1, 0}, {0.25, 0.5, 0.25}, 0.003);
+  f.respond();
+  EXPECT_EQ(f.finalPosition(pinned).y, 0.003);
+  EXPECT_LE(f.finalPosition(a).y, -kSkin + 1e-12);
+  EXPECT_LE(f.finalPosition(b).y, -kSkin + 1e-12);
+  // The hit point itself ends on the entry side too, pinned corner or not.
+  const Vec3 hit = f.finalPosition(a) * 0.25 + f.finalPosition(pinned) * 0.5 + f.finalPosition(b) * 0.25;
+  EXPECT_LE(hit.y, -kSkin + 1e-9);
   Vec3 expectedForce;
-  for (const NodeCorrection& c : corrections) {
-    EXPECT_NE(c.vertex, 2u);
-    EXPECT_NEAR(c.displacement.y, -(0.003 + kSkin), 1e-12);
-    EXPECT_EQ(c.displacement.x, 0);
-    const Vec3 moved = f.patch.positions[c.vertex] + c.displacement;
-    EXPECT_NEAR(dot(moved, c.planeNormal) + c.planeOffset, 0, 1e-12);
+  for (const NodeCorrection& c : f.corrections) {
+    EXPECT_NEAR(c.normal.y, -1, 1e-12);
     expectedForce -= c.displacement / (f.patch.inverseMasses[c.vertex] * kDt * kDt);
   }
-  EXPECT_NEAR(wrench.force.y, expectedForce.y, 1e-9);
-  EXPECT_GT(wrench.force.y, 0) << "the tissue pushes the tool up";
+  EXPECT_NEAR(f.wrench.force.y, expectedForce.y, 1e-9);
+  EXPECT_GT(f.wrench.force.y, 0) << "the tissue pushes the tool up";
 }
 
-TEST(Response, ConstraintLeavesNodesAlreadyOutside) {
+TEST(Response, NodesAlreadyOutsideStayPut) {
   Fixture f;
-  for (Vec3& p : f.patch.positions) p.y = -0.002;  // below the skin already
-  ResponseWorkspace workspace;
-  std::vector<NodeCorrection> corrections;
-  Wrench wrench;
-  computeResponse(f.model, f.pose, f.patch, f.contacts, kSkin, kDt, {}, workspace, corrections, wrench);
-  EXPECT_TRUE(corrections.empty());
-  EXPECT_EQ(wrench.force.y, 0);
+  const Index a = f.vertex({-0.1, -0.002, -0.1});
+  const Index b = f.vertex({0.1, -0.002, -0.1});
+  const Index c = f.vertex({0, -0.002, 0.1});
+  f.contact(f.face(a, c, b), {0, -1, 0}, {0.3, 0.3, 0.4}, -0.002);
+  f.respond();
+  EXPECT_TRUE(f.corrections.empty());
+  EXPECT_EQ(f.wrench.force.y, 0);
 }
 
-TEST(Response, PaperForceIsKTimesDepthSpreadByBarycentricWeights) {
+TEST(Response, ANeedleInTheMiddleOfALargeFaceMovesTheFaceNotJustItsCorners) {
+  // The corners are far outside the plate's footprint; only the hit point is inside.
   Fixture f;
-  ResponseSettings settings;
-  settings.kind = ResponseKind::PaperForce;
-  settings.stiffness = 200;
-  ResponseWorkspace workspace;
-  std::vector<NodeCorrection> corrections;
-  Wrench wrench;
-  computeResponse(f.model, f.pose, f.patch, f.contacts, kSkin, kDt, settings, workspace, corrections, wrench);
-  const Real force = 200 * (0.003 + kSkin);  // f = k·t, t measured into the skin
-  ASSERT_EQ(corrections.size(), 2u);
-  for (const NodeCorrection& c : corrections) {
-    // The face's corners are (0, 2, 1): vertex 0 carries weight x, vertex 1 weight z.
-    const Real weight = c.vertex == 0 ? 0.25 : 0.5;
-    EXPECT_NEAR(c.displacement.y, -force * weight * f.patch.inverseMasses[c.vertex] * kDt * kDt, 1e-15);
-  }
-  EXPECT_NEAR(wrench.force.y, force * 0.75, 1e-9) << "the pinned node's share goes nowhere";
-}
-
-TEST(Response, NoneMovesNothing) {
-  Fixture f;
-  ResponseSettings settings;
-  settings.kind = ResponseKind::None;
-  ResponseWorkspace workspace;
-  std::vector<NodeCorrection> corrections;
-  Wrench wrench;
-  computeResponse(f.model, f.pose, f.patch, f.contacts, kSkin, kDt, settings, workspace, corrections, wrench);
-  EXPECT_TRUE(corrections.empty());
+  const Index a = f.vertex({-2, 0.003, -2});
+  const Index b = f.vertex({2, 0.003, -2});
+  const Index c = f.vertex({0, 0.003, 2});
+  f.contact(f.face(a, c, b), {0, -1, 0}, {0.25, 0.5, 0.25}, 0.003);
+  f.respond();
+  const Vec3 hit = f.finalPosition(a) * 0.25 + f.finalPosition(c) * 0.5 + f.finalPosition(b) * 0.25;
+  EXPECT_NEAR(hit.y, -kSkin, 1e-9);
+  // The corner with the largest weight moves most.
+  EXPECT_LT(f.finalPosition(c).y, f.finalPosition(a).y);
 }
 
 TEST(Response, ARimNodeEndsOutsideBothFacesThatHitIt) {
   Fixture f;
-  // A second contact through the +x side of the plate on the same face.
-  Index sideNode = 0;
-  while (f.model.normals[sideNode].x < 0.5) ++sideNode;
-  Contact side = f.contacts[0];
-  side.toolNode = sideNode;
-  side.normal = {1, 0, 0};
-  f.contacts.push_back(side);
-  f.patch.positions[1] = {0.195, 0.003, -0.1};  // inside, 5 mm from the +x side
-  ResponseWorkspace workspace;
-  std::vector<NodeCorrection> corrections;
-  Wrench wrench;
-  computeResponse(f.model, f.pose, f.patch, f.contacts, kSkin, kDt, {}, workspace, corrections, wrench);
-  for (const NodeCorrection& c : corrections) {
-    const Vec3 moved = f.patch.positions[c.vertex] + c.displacement;
-    const bool outsideUnderside = moved.y <= -kSkin + 1e-12;
-    const bool outsideSide = moved.x >= 0.2 + kSkin - 1e-12;
-    EXPECT_TRUE(outsideUnderside || outsideSide) << "vertex " << c.vertex;
+  const Index a = f.vertex({-0.1, 0.003, -0.1});
+  const Index b = f.vertex({0.195, 0.003, -0.1});  // 5 mm inside the +x side
+  const Index c = f.vertex({0, 0.003, 0.1});
+  const Index face = f.face(a, c, b);
+  f.contact(face, {0, -1, 0}, {0.3, 0.3, 0.4}, 0.003);
+  f.contact(face, {1, 0, 0}, {0.1, 0.1, 0.8}, 0.005);
+  f.respond();
+  for (Index v : {a, b, c}) {
+    const Vec3 p = f.finalPosition(v);
+    EXPECT_TRUE(p.y <= -kSkin + 1e-12 || p.x >= 0.2 + kSkin - 1e-12) << "vertex " << v;
   }
+}
+
+TEST(Response, TheNodeGuardSendsASlippedNodeBackToTheSideItCameFrom) {
+  // A node 15 mm up inside a 20 mm plate, nearer the top face, which no ray reported: it came
+  // from below, so it must go out below.
+  Fixture f;
+  const Vec3 before{0, -0.03, 0};
+  const Index slipped = f.vertex({0, 0.015, 0}, 2, &before);
+  f.respond();
+  ASSERT_EQ(f.corrections.size(), 1u);
+  EXPECT_NEAR(f.finalPosition(slipped).y, -kSkin, 1e-12);
+
+  Fixture unguarded;
+  unguarded.vertex({0, 0.015, 0}, 2, &before);
+  ResponseSettings settings;
+  settings.guardNodes = false;
+  unguarded.respond(settings);
+  EXPECT_TRUE(unguarded.corrections.empty());
+}
+
+TEST(Response, PaperForceIsKTimesDepthSpreadByBarycentricWeights) {
+  Fixture f;
+  const Index a = f.vertex({-0.1, 0.003, -0.1});
+  const Index b = f.vertex({0.1, 0.003, -0.1});
+  const Index pinned = f.vertex({0, 0.003, 0.1}, 0);
+  f.contact(f.face(a, pinned, b), {0, -1, 0}, {0.25, 0.5, 0.25}, 0.003);
+  ResponseSettings settings;
+  settings.kind = ResponseKind::PaperForce;
+  settings.stiffness = 200;
+  f.respond(settings);
+  const Real force = 200 * (0.003 + kSkin);  // f = k·t, t measured into the skin
+  ASSERT_EQ(f.corrections.size(), 2u);
+  for (const NodeCorrection& c : f.corrections) {
+    EXPECT_NEAR(c.displacement.y, -force * 0.25 * f.patch.inverseMasses[c.vertex] * kDt * kDt, 1e-15);
+  }
+  EXPECT_NEAR(f.wrench.force.y, force * 0.5, 1e-9) << "the pinned node's share goes nowhere";
+}
+
+TEST(Response, NoneMovesNothing) {
+  Fixture f;
+  const Index a = f.vertex({-0.1, 0.003, -0.1});
+  const Index b = f.vertex({0.1, 0.003, -0.1});
+  const Index c = f.vertex({0, 0.003, 0.1});
+  f.contact(f.face(a, c, b), {0, -1, 0}, {0.3, 0.3, 0.4}, 0.003);
+  ResponseSettings settings;
+  settings.kind = ResponseKind::None;
+  f.respond(settings);
+  EXPECT_TRUE(f.corrections.empty());
 }
 
 }  // namespace

@@ -56,6 +56,7 @@ SoftPatch patchOf(const ConvexMesh& mesh) {
   SoftPatch patch;
   for (Index v = 0; v < mesh.vertices.size(); ++v) {
     patch.positions.push_back(mesh.vertices[v]);
+    patch.previousPositions.push_back(mesh.vertices[v]);
     patch.inverseMasses.push_back(1);
     patch.nodeIds.push_back(v);
   }

@@ -41,9 +41,6 @@ struct ToolDiagnostics {
   Index unsupportedPairs = 0;
   /// Soft nodes whose correction was not finite and was not written (never expected).
   Index rejectedCorrections = 0;
-  /// Solver contacts not handed to Bullet because the tool's velocity would have carried their
-  /// node farther than the soft body is wide in one step: the tool jumped rather than moved.
-  Index solverContactsSkipped = 0;
   /// Pairs skipped because the tool's transform was not finite.
   Index invalidPosePairs = 0;
 };

@@ -15,7 +15,8 @@ namespace thintool {
 /// The soft faces near one tool piece for one step, and the soft nodes they use.
 /// Vertices are local to the patch; nodeIds and faceIds map back to the soft body.
 struct SoftPatch {
-  std::vector<Vec3> positions;   ///< world, end of step as predicted by the soft solver
+  std::vector<Vec3> positions;          ///< world, end of step as predicted by the soft solver
+  std::vector<Vec3> previousPositions;  ///< world, start of step
   std::vector<Real> inverseMasses;
   std::vector<Index> nodeIds;
   std::vector<std::array<Index, 3>> faces;  ///< local vertex indices
@@ -27,6 +28,7 @@ struct SoftPatch {
 
   void clear() {
     positions.clear();
+    previousPositions.clear();
     inverseMasses.clear();
     nodeIds.clear();
     faces.clear();

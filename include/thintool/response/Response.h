@@ -5,19 +5,31 @@
 /// @file
 /// What the soft body does about this step's contacts.
 ///
-/// - ResponseKind::Constraint (default): a position projection. Every node of every hit soft face
-///   is moved, along the contact's normal, to the entry side of the tool face the contact came
-///   through, plus the skin. Contacts are applied in order (Gauss–Seidel), so a node under two
-///   faces of the tool (a rim) ends outside both planes. A projection has no stiffness and no
-///   time-step limit: the node is where it must be at the end of the step, and its velocity
-///   follows from the move. The equivalent force on the tool is Σ m·Δx/dt².
+/// - ResponseKind::Constraint (default): a position projection after position-based dynamics
+///   (Müller et al., "Position based dynamics", 2007), in three passes:
+///   1. every soft node of a hit face that lies inside the tool (its faces' planes moved out by
+///      the skin) leaves through the entry plane of one of its face's contacts, the one it is
+///      least behind: never across the tool, never out of its far side;
+///   2. the node guard, beyond the paper: any other soft node near the tool that ends inside it
+///      (it slipped in between the rays, at a rim) leaves through the face it was outside of at
+///      the start of the step, judged in the tool's previous pose, so it too returns to the side
+///      it came from;
+///   3. each contact moves the point where its ray met the soft face onto its entry plane; the
+///      move is shared by the face's nodes in proportion to barycentric weight × inverse mass, the
+///      smallest mass-weighted move that does it, so a needle pressing the middle of a large face
+///      moves the face and a node far from the hit point moves little. Contacts are swept in order
+///      (Gauss–Seidel) until every hit point is out.
+///   A projection has no stiffness and no time-step limit: the nodes are where they must be at the
+///   end of the step, and their velocities follow from the move. The equivalent force on the tool
+///   is Σ m·Δx/dt². The glue then asks the soft solver to hold the moved nodes (see
+///   ResponseSettings::holdInSolver).
 /// - ResponseKind::PaperForce: the paper's eq. (2), f = k·t along the contact normal, t being the
 ///   penetration into the tool's skin, spread over the face's nodes by the hit's barycentric
 ///   weights. Bullet's classic solver clears node forces before collisions are processed, so a
 ///   force added then is lost, and one added after the step acts a step late. We apply f as the
 ///   displacement it causes within the step under Bullet's symplectic Euler, Δx = f·m⁻¹·dt², so
 ///   it acts in the step it was found in. Like any explicit penalty it is stable only while
-///   k·dt²/m stays small (about < 1 for a node alone); the stiff-case tests chart where it fails.
+///   k·dt²/m stays small (about < 1 for a node alone).
 /// - ResponseKind::None: contacts are reported, nothing is moved.
 
 #include <thintool/detection/Detection.h>
@@ -33,21 +45,20 @@ struct ResponseSettings {
   ResponseKind kind = ResponseKind::Constraint;
   /// PaperForce: k of f = k·t (N/m, > 0).
   Real stiffness = 1000;
-  /// Constraint: also give Bullet's soft solver a contact (btSoftBody::RContact) for each moved
-  /// node, carrying the same entry-side plane, so that links and pressure pulling the node back
-  /// into the tool during the solver's iterations are corrected there too.
-  bool solverContacts = true;
-  /// Fraction of the remaining penetration each solver iteration removes (Bullet's kKHR for
-  /// static and kinematic bodies, kCHR for dynamic ones), in (0, 1].
-  Real solverHardness = 1;
+  /// Constraint: the node guard (pass 2). Off, only nodes of faces the rays hit are moved.
+  bool guardNodes = true;
+  /// Constraint: give Bullet's soft solver one contact (btSoftBody::RContact) per moved node that
+  /// holds it where the projection put it along the contact normal, one-sided, through the
+  /// solver's position iterations. Without it the links and the pressure of a squashed body pull
+  /// the nodes back into the tool within the same step.
+  bool holdInSolver = true;
 };
 
-/// A soft node's move, and the plane the move put it on.
+/// A soft node's move, and the direction it was moved out along.
 struct NodeCorrection {
   Index vertex = kInvalidIndex;  ///< index in SoftPatch::positions
   Vec3 displacement;             ///< world (m)
-  Vec3 planeNormal;              ///< world, unit, out of the tool
-  Real planeOffset = 0;          ///< dot(x, planeNormal) + planeOffset = distance in front of the skin (m)
+  Vec3 normal;                   ///< world, unit, out of the tool: the direction the node must not go back along
 };
 
 /// Net force on the tool (N) and torque about the tool's origin (N·m) from this step's response.
@@ -58,18 +69,22 @@ struct Wrench {
 
 class ResponseWorkspace {
  private:
-  friend void computeResponse(const ToolModel&, const Pose&, const SoftPatch&, const std::vector<Contact>&, Real,
-                              Real, const ResponseSettings&, ResponseWorkspace&, std::vector<NodeCorrection>&,
-                              Wrench&);
+  friend void computeResponse(const ToolModel&, const Pose&, const Pose&, const SoftPatch&,
+                              const std::vector<Contact>&, Real, Real, const ResponseSettings&, ResponseWorkspace&,
+                              std::vector<NodeCorrection>&, Wrench&);
   std::vector<Vec3> m_positions;
-  std::vector<Index> m_slot;  ///< per patch vertex: its entry in the output, or kInvalidIndex
+  std::vector<Index> m_slot;          ///< per patch vertex: its entry in the output, or kInvalidIndex
+  std::vector<Real> m_largestShare;   ///< per output entry: the largest single move, whose normal it keeps
+  std::vector<Real> m_entryDepth;     ///< per output entry: how far inside the tool the node was
 };
 
 /// Turns contacts into node corrections and the wrench on the tool, for a step of dt seconds with
-/// the given skin (m). Nodes of zero inverse mass (pinned) are never moved. Allocates nothing
-/// once the workspace and outCorrections have grown to the patch size.
-void computeResponse(const ToolModel& model, const Pose& toolPose, const SoftPatch& patch,
-                     const std::vector<Contact>& contacts, Real skin, Real dt, const ResponseSettings& settings,
-                     ResponseWorkspace& workspace, std::vector<NodeCorrection>& outCorrections, Wrench& outWrench);
+/// the given skin (m). previousToolPose is where the tool was at the start of the step (the node
+/// guard reads SoftPatch::previousPositions against it). Nodes of zero inverse mass (pinned) are
+/// never moved. Allocates nothing once the workspace and outCorrections have grown to the patch.
+void computeResponse(const ToolModel& model, const Pose& toolPose, const Pose& previousToolPose,
+                     const SoftPatch& patch, const std::vector<Contact>& contacts, Real skin, Real dt,
+                     const ResponseSettings& settings, ResponseWorkspace& workspace,
+                     std::vector<NodeCorrection>& outCorrections, Wrench& outWrench);
 
 }  // namespace thintool
