@@ -1,0 +1,7 @@
+#!/bin/sh
+# Installs the Debian bookworm packages that building, testing and benchmarking ThinTool need.
+set -eu
+if [ "$(id -u)" -eq 0 ]; then run=""; else run="sudo"; fi
+$run apt-get update -qq
+$run env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends \
+  cmake g++ make pkg-config libbullet-dev libgtest-dev libbenchmark-dev

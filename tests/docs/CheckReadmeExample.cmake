@@ -1,0 +1,17 @@
+# The README's complete program must be examples/minimal/main.cpp, character for character.
+#   cmake -DREADME=... -DEXAMPLE=... -P CheckReadmeExample.cmake
+file(READ ${README} readme)
+file(READ ${EXAMPLE} example)
+string(FIND "${readme}" "<!-- minimal-example:begin -->\n```cpp\n" begin)
+string(FIND "${readme}" "```\n<!-- minimal-example:end -->" end)
+if(begin EQUAL -1 OR end EQUAL -1)
+  message(FATAL_ERROR "README.md lacks the minimal-example markers")
+endif()
+string(LENGTH "<!-- minimal-example:begin -->\n```cpp\n" marker)
+math(EXPR start "${begin} + ${marker}")
+math(EXPR length "${end} - ${start}")
+string(SUBSTRING "${readme}" ${start} ${length} shown)
+if(NOT shown STREQUAL example)
+  message(FATAL_ERROR "README.md's program differs from examples/minimal/main.cpp")
+endif()
+message(STATUS "README.md shows examples/minimal/main.cpp exactly")
