@@ -3,6 +3,10 @@
 #include <thintool/thintool.h>
 
 #include <BulletSoftBody/btDefaultSoftBodySolver.h>
+#include <BulletSoftBody/btDeformableBodySolver.h>
+#include <BulletSoftBody/btDeformableMultiBodyConstraintSolver.h>
+#include <BulletSoftBody/btDeformableMultiBodyDynamicsWorld.h>
+#include <BulletSoftBody/btSoftBodyHelpers.h>
 #include <BulletSoftBody/btSoftBodyRigidBodyCollisionConfiguration.h>
 #include <BulletSoftBody/btSoftRigidDynamicsWorld.h>
 #include <LinearMath/btPoolAllocator.h>
@@ -110,6 +114,35 @@ TEST(Configuration, NonConvexShapesAreRejected) {
   const std::string message = errorOf([&] { addTool(w.world, w.body); });
   EXPECT_NE(message.find("not convex"), std::string::npos) << message;
   w.body.setCollisionShape(&w.box);
+}
+
+TEST(Configuration, DeformableWorldPairsGoToBulletAndAreCounted) {
+  CollisionConfiguration configuration;
+  btCollisionDispatcher dispatcher(&configuration);
+  btDbvtBroadphase broadphase;
+  btDeformableBodySolver deformableSolver;
+  btDeformableMultiBodyConstraintSolver solver;
+  solver.setDeformableSolver(&deformableSolver);
+  btDeformableMultiBodyDynamicsWorld world(&dispatcher, &broadphase, &solver, &configuration, &deformableSolver);
+  btSoftBody* ball = btSoftBodyHelpers::CreateEllipsoid(world.getWorldInfo(), btVector3(0, 0, 0),
+                                                        btVector3(1, 1, 1), 63);
+  ball->m_cfg.collisions = btSoftBody::fCollision::SDF_RD | btSoftBody::fCollision::SDF_RDN;
+  ball->setTotalMass(1);
+  world.addSoftBody(ball);
+  btBoxShape plateShape(btVector3(0.4, 0.01, 0.4));
+  btDefaultMotionState motion(btTransform(btQuaternion::getIdentity(), btVector3(0, 1.0, 0)));
+  btRigidBody plate(btRigidBody::btRigidBodyConstructionInfo(0, &motion, &plateShape));
+  plate.setCollisionFlags(plate.getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
+  world.addRigidBody(&plate);
+  Tool& tool = addTool(world, plate);
+  for (int i = 0; i < 3; ++i) world.stepSimulation(btScalar(1) / 60, 1, btScalar(1) / 60);
+  const ToolStepReport& report = tool.report();
+  EXPECT_GT(report.diagnostics.unsupportedPairs, 0u);
+  EXPECT_TRUE(report.contacts.empty());
+  removeTool(world, plate);
+  world.removeRigidBody(&plate);
+  world.removeSoftBody(ball);
+  delete ball;
 }
 
 }  // namespace
