@@ -26,6 +26,7 @@ Tool::Tool(btRigidBody& body, const ToolOptions& options, std::vector<ToolModel>
     largest = std::max(largest, piece.nodeCount());
   }
   m_report.contacts.reserve(largest);
+  m_detectionWorkspace.prepare(largest);
 }
 
 Tool::~Tool() = default;

@@ -50,8 +50,7 @@ void PairHistory::record(const ToolModel& model, const std::vector<Contact>& con
   }
 }
 
-void DetectionWorkspace::prepare(const ToolModel& model) {
-  const Index n = model.nodeCount();
+void DetectionWorkspace::prepare(Index n) {
   m_bestDistance.assign(n, kNoHit);
   m_bestFace.assign(n, kInvalidIndex);
   m_bestU.assign(n, 0);
@@ -68,8 +67,8 @@ void detectContacts(const ToolModel& model, const Pose& toolPose, const SoftPatc
   outContacts.clear();
   outCounters = DetectionCounters{};
   outCounters.facesGathered = patch.faceCount();
-  if (work.m_bestDistance.size() != model.nodeCount()) {
-    work.prepare(model);
+  if (work.m_bestDistance.size() < model.nodeCount()) {
+    work.prepare(model.nodeCount());
   }
   const Real skin = parameters.skin;
 

@@ -33,6 +33,13 @@ struct Fixture {
     patch.nodeIds.push_back(patch.vertexCount() - 1);
     return patch.vertexCount() - 1;
   }
+  // A triangle 3 mm inside the underside, counter-clockwise seen from below; returns the face.
+  Index triangleInside(Real inverseMassOfThird = 2) {
+    const Index a = vertex({-0.1, 0.003, -0.1});
+    const Index b = vertex({0.1, 0.003, -0.1});
+    const Index c = vertex({0, 0.003, 0.1}, inverseMassOfThird);
+    return face(a, c, b);
+  }
   Index face(Index a, Index b, Index c) {
     patch.faces.push_back({a, b, c});
     patch.faceIds.push_back(patch.faceCount() - 1);
@@ -146,10 +153,7 @@ TEST(Response, TheNodeGuardSendsASlippedNodeBackToTheSideItCameFrom) {
 
 TEST(Response, PaperForceIsKTimesDepthSpreadByBarycentricWeights) {
   Fixture f;
-  const Index a = f.vertex({-0.1, 0.003, -0.1});
-  const Index b = f.vertex({0.1, 0.003, -0.1});
-  const Index pinned = f.vertex({0, 0.003, 0.1}, 0);
-  f.contact(f.face(a, pinned, b), {0, -1, 0}, {0.25, 0.5, 0.25}, 0.003);
+  f.contact(f.triangleInside(0), {0, -1, 0}, {0.25, 0.5, 0.25}, 0.003);  // the weight 0.5 is pinned
   ResponseSettings settings;
   settings.kind = ResponseKind::PaperForce;
   settings.stiffness = 200;
@@ -164,10 +168,7 @@ TEST(Response, PaperForceIsKTimesDepthSpreadByBarycentricWeights) {
 
 TEST(Response, NoneMovesNothing) {
   Fixture f;
-  const Index a = f.vertex({-0.1, 0.003, -0.1});
-  const Index b = f.vertex({0.1, 0.003, -0.1});
-  const Index c = f.vertex({0, 0.003, 0.1});
-  f.contact(f.face(a, c, b), {0, -1, 0}, {0.3, 0.3, 0.4}, 0.003);
+  f.contact(f.triangleInside(), {0, -1, 0}, {0.3, 0.3, 0.4}, 0.003);
   ResponseSettings settings;
   settings.kind = ResponseKind::None;
   f.respond(settings);

@@ -89,10 +89,11 @@ class PairHistory {
   std::vector<Index> m_blockedList;
 };
 
-/// Scratch memory of detection, sized once per tool and reused by every step and pair.
+/// Scratch memory of detection, sized once per tool (for its largest piece) and reused by every
+/// step and pair.
 class DetectionWorkspace {
  public:
-  void prepare(const ToolModel& model);
+  void prepare(Index nodeCount);
 
  private:
   friend void detectContacts(const ToolModel&, const Pose&, const SoftPatch&, const SoftSurfaceRayQuery*,
