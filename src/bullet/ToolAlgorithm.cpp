@@ -62,6 +62,41 @@ btSoftBody::RContact holdContact(btSoftBody::Node& node, const Vec3& normal, btR
   return contact;
 }
 
+// Writes the corrections into the soft body: the moves, the solver's holds, and for a dynamic tool
+// the reaction. A correction that is not finite is counted and never written.
+void applyResponse(PairState& state, btSoftBody& softBody, const btCollisionObject& toolObject,
+                   const ResponseSettings& settings, btScalar timeStep) {
+  const btRigidBody* rigidBody = btRigidBody::upcast(&toolObject);
+  btRigidBody* dynamicBody =
+      rigidBody != nullptr && !rigidBody->isStaticOrKinematicObject() ? const_cast<btRigidBody*>(rigidBody) : nullptr;
+  const bool holdInSolver = settings.kind == ResponseKind::Constraint && settings.holdInSolver;
+  Index holdsUsed = 0;
+  for (const NodeCorrection& correction : state.corrections) {
+    if (!isFinite(correction.displacement) || !isFinite(correction.normal)) {
+      ++state.rejectedCorrections;
+      continue;
+    }
+    btSoftBody::Node& node = softBody.m_nodes[static_cast<int>(state.patch.nodeIds[correction.vertex])];
+    const btVector3 displacement = toBt(correction.displacement);
+    node.m_x += displacement;
+    if (holdInSolver) {
+      if (holdsUsed == state.holdBodies.size()) {
+        state.holdBodies.push_back(
+            std::make_unique<btRigidBody>(btRigidBody::btRigidBodyConstructionInfo(0, nullptr, nullptr)));
+      }
+      softBody.m_rcontacts.push_back(holdContact(node, correction.normal, *state.holdBodies[holdsUsed++], timeStep));
+    }
+    if (dynamicBody != nullptr) {
+      // The node's change of momentum, taken from the tool.
+      dynamicBody->applyImpulse(displacement * (-1 / (node.m_im * timeStep)),
+                                node.m_x - dynamicBody->getCenterOfMassPosition());
+    }
+  }
+  if (dynamicBody != nullptr && !state.corrections.empty()) {
+    dynamicBody->activate();
+  }
+}
+
 }  // namespace
 
 ToolAlgorithm::ToolAlgorithm(const btCollisionAlgorithmConstructionInfo& info, Tool& tool, PairState& state,
@@ -137,35 +172,7 @@ void ToolAlgorithm::processCollision(const btCollisionObjectWrapper* body0, cons
   state.previousPose = pose;
   state.hasPreviousPose = true;
 
-  const btRigidBody* rigidBody = btRigidBody::upcast(&toolObject);
-  btRigidBody* dynamicBody =
-      rigidBody != nullptr && !rigidBody->isStaticOrKinematicObject() ? const_cast<btRigidBody*>(rigidBody) : nullptr;
-  const bool holdInSolver = options.response.kind == ResponseKind::Constraint && options.response.holdInSolver;
-  Index holdsUsed = 0;
-  for (const NodeCorrection& correction : state.corrections) {
-    if (!isFinite(correction.displacement) || !isFinite(correction.normal)) {
-      ++state.rejectedCorrections;
-      continue;
-    }
-    btSoftBody::Node& node = softBody.m_nodes[static_cast<int>(state.patch.nodeIds[correction.vertex])];
-    const btVector3 displacement = toBt(correction.displacement);
-    node.m_x += displacement;
-    if (holdInSolver) {
-      if (holdsUsed == state.holdBodies.size()) {
-        state.holdBodies.push_back(
-            std::make_unique<btRigidBody>(btRigidBody::btRigidBodyConstructionInfo(0, nullptr, nullptr)));
-      }
-      softBody.m_rcontacts.push_back(holdContact(node, correction.normal, *state.holdBodies[holdsUsed++], timeStep));
-    }
-    if (dynamicBody != nullptr) {
-      // The node's change of momentum, taken from the tool.
-      dynamicBody->applyImpulse(displacement * (-1 / (node.m_im * timeStep)),
-                                node.m_x - dynamicBody->getCenterOfMassPosition());
-    }
-  }
-  if (dynamicBody != nullptr && !state.corrections.empty()) {
-    dynamicBody->activate();
-  }
+  applyResponse(state, softBody, toolObject, options.response, timeStep);
   releasePatch(state);
   const auto responded = Clock::now();
   state.detectionMicroseconds = microsecondsBetween(start, detected);

@@ -78,7 +78,10 @@ class CollisionConfiguration : public btSoftBodyRigidBodyCollisionConfiguration 
 /// thintool::CollisionConfiguration. Builds the tool model from the body's shape: btBoxShape,
 /// btConvexHullShape, any other convex shape through the hull of its support points, and each
 /// convex child of a btCompoundShape. The body stays awake (DISABLE_DEACTIVATION), since a
-/// sleeping tool's pairs are not processed. Throws thintool::Error naming the tool and the problem.
+/// sleeping tool's pairs are not processed. A kinematic tool is met at the pose of the step's end,
+/// as its motion state gave it; a dynamic tool at its pose at the start of the step, as Bullet's
+/// stock handler meets it, and it receives the tissue's reaction as impulses. Throws
+/// thintool::Error naming the tool and the problem.
 Tool& addTool(btCollisionWorld& world, btRigidBody& body, const ToolOptions& options = ToolOptions());
 
 /// Unregisters body from world's configuration; returns whether it was a tool. Call it before
