@@ -153,15 +153,22 @@ void detectContacts(const ToolModel& model, const Pose& toolPose, const SoftPatc
       }
     }
     Contact contact;
+    contact.kind = ContactKind::ToolRay;
     contact.toolNode = node;
     contact.patchFace = face;
     contact.softFace = patch.faceIds[face];
+    contact.softNodeCount = 3;
+    for (int k = 0; k < 3; ++k) {
+      contact.patchVertices[k] = patch.faces[face][k];
+      contact.softNodes[k] = patch.nodeIds[patch.faces[face][k]];
+    }
     const Real u = work.m_bestU[node];
     const Real v = work.m_bestV[node];
     contact.barycentric = {1 - u - v, u, v};
     contact.depth = distance - skin;
     contact.normal = toolPose.applyToDirection(normal);
     contact.point = toolPose.apply(model.positions[node] - normal * contact.depth);
+    contact.offset = -dot(contact.normal, toolPose.apply(model.positions[node]) + contact.normal * skin);
     outCounters.maxDepth = std::max(outCounters.maxDepth, contact.depth);
     outContacts.push_back(contact);
   }

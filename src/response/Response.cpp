@@ -56,18 +56,16 @@ void computeResponse(const ToolModel& model, const Pose& toolPose, const Pose& p
   auto positionOf = [&](Index vertex) -> const Vec3& {
     return work.m_slot[vertex] == kInvalidIndex ? patch.positions[vertex] : work.m_positions[vertex];
   };
-  // The entry-side plane of a contact: the tool face its node sits on, moved out by the skin.
-  auto planeOffsetOf = [&](const Contact& contact) {
-    return -dot(contact.normal, toolPose.apply(model.positions[contact.toolNode]) + contact.normal * skin);
-  };
   auto movable = [&](Index vertex) { return patch.inverseMasses[vertex] > 0; };
+  auto distanceOf = [&](const Contact& contact, const Vec3& position) {
+    return dot(contact.normal, position) + contact.offset;
+  };
 
   if (settings.kind == ResponseKind::PaperForce) {
     for (const Contact& contact : contacts) {
-      const auto& corners = patch.faces[contact.patchFace];
       const Real pushForce = settings.stiffness * (contact.depth + skin);
-      for (int k = 0; k < 3; ++k) {
-        const Index vertex = corners[k];
+      for (Index k = 0; k < contact.softNodeCount; ++k) {
+        const Index vertex = contact.patchVertices[k];
         if (!movable(vertex)) {
           continue;
         }
@@ -78,14 +76,22 @@ void computeResponse(const ToolModel& model, const Pose& toolPose, const Pose& p
       }
     }
   } else {
-    // Pass 1: nodes of hit faces inside the tool leave through their least-violated entry plane.
+    // Pass 1: soft nodes inside the tool leave through the least-violated plane among their
+    // contacts': a swept contact of the node itself, or the entry plane of a ray that hit one of
+    // its faces. Never across the tool, never out of its far side.
     for (const Contact& contact : contacts) {
-      const Real planeOffset = planeOffsetOf(contact);
-      for (Index vertex : patch.faces[contact.patchFace]) {
-        const Real behind = -(dot(patch.positions[vertex], contact.normal) + planeOffset);
-        if (!movable(vertex) || !(behind > 0) ||
-            outsideDistance(model, toolPose.applyInverse(patch.positions[vertex])) >= skin) {
+      if (contact.kind != ContactKind::ToolRay && contact.kind != ContactKind::SoftNode) {
+        continue;
+      }
+      for (Index k = 0; k < contact.softNodeCount; ++k) {
+        const Index vertex = contact.patchVertices[k];
+        const Real behind = -distanceOf(contact, patch.positions[vertex]);
+        if (!movable(vertex) || !(behind > 0)) {
           continue;
+        }
+        if (contact.kind == ContactKind::ToolRay &&
+            outsideDistance(model, toolPose.applyInverse(patch.positions[vertex])) >= skin) {
+          continue;  // beside the tool: the hit point's pass moves its face
         }
         NodeCorrection& correction = slotOf(vertex);
         Real& chosen = work.m_entryDepth[work.m_slot[vertex]];
@@ -126,27 +132,27 @@ void computeResponse(const ToolModel& model, const Pose& toolPose, const Pose& p
       work.m_largestShare[slot] = std::numeric_limits<Real>::max();
     }
 
-    // Pass 3: each contact's hit point onto its entry plane, shared by weight × inverse mass.
+    // Pass 3: every contact's soft point onto its plane, the move shared by weight × inverse mass.
     constexpr int kSweeps = 4;
     constexpr Real kSettled = 1e-6;  // m
     for (int sweep = 0; sweep < kSweeps; ++sweep) {
       Real worst = 0;
       for (const Contact& contact : contacts) {
-        const auto& corners = patch.faces[contact.patchFace];
-        Vec3 hitPoint;
+        Vec3 point;
         Real weightedMobility = 0;
-        for (int k = 0; k < 3; ++k) {
-          hitPoint += positionOf(corners[k]) * contact.barycentric[k];
-          weightedMobility += contact.barycentric[k] * contact.barycentric[k] * patch.inverseMasses[corners[k]];
+        for (Index k = 0; k < contact.softNodeCount; ++k) {
+          const Index vertex = contact.patchVertices[k];
+          point += positionOf(vertex) * contact.barycentric[k];
+          weightedMobility += contact.barycentric[k] * contact.barycentric[k] * patch.inverseMasses[vertex];
         }
-        const Real distance = dot(hitPoint, contact.normal) + planeOffsetOf(contact);
+        const Real distance = distanceOf(contact, point);
         if (distance >= 0 || !(weightedMobility > 0)) {
           continue;
         }
         worst = std::max(worst, -distance);
         const Real scale = -distance / weightedMobility;
-        for (int k = 0; k < 3; ++k) {
-          const Index vertex = corners[k];
+        for (Index k = 0; k < contact.softNodeCount; ++k) {
+          const Index vertex = contact.patchVertices[k];
           const Real share = scale * contact.barycentric[k] * patch.inverseMasses[vertex];
           if (!(share > 0)) {
             continue;

@@ -310,6 +310,32 @@ void checkSettings(const ToolModelSettings& settings) {
   }
 }
 
+// Edges shared by two triangles whose planes differ.
+std::vector<std::array<Index, 2>> featureEdgesOf(const ConvexMesh& mesh, const std::vector<Plane>& planes) {
+  std::vector<std::array<Index, 2>> edges;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    for (int k = 0; k < 3; ++k) {
+      const Index from = mesh.triangles[t][k];
+      const Index to = mesh.triangles[t][(k + 1) % 3];
+      if (from > to) {
+        continue;  // each edge once: the neighbour has it the other way round
+      }
+      for (std::size_t n = 0; n < mesh.triangles.size(); ++n) {
+        const auto& other = mesh.triangles[n];
+        const bool shares = (other[0] == to && other[1] == from) || (other[1] == to && other[2] == from) ||
+                            (other[2] == to && other[0] == from);
+        if (shares) {
+          if (dot(planes[t].normal, planes[n].normal) < 1 - 1e-9) {
+            edges.push_back({from, to});
+          }
+          break;
+        }
+      }
+    }
+  }
+  return edges;
+}
+
 }  // namespace
 
 bool detectBox(const ConvexMesh& mesh, Vec3& outHalfExtents, Vec3& outCentre) {
@@ -350,6 +376,7 @@ ToolModel buildToolModel(const ConvexMesh& mesh, const ToolModelSettings& settin
   model.planes = facePlanes(mesh);
   model.bounds = bounds(mesh);
   model.thickness = thicknessAcrossFaces(mesh, model.planes);
+  model.featureEdges = featureEdgesOf(mesh, model.planes);
 
   const Vec3 extent = model.bounds.extent();
   const Real largestExtent = std::max({extent.x, extent.y, extent.z});

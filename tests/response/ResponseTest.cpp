@@ -54,9 +54,13 @@ struct Fixture {
     Contact c;
     c.toolNode = nodeFacing(normal);
     c.patchFace = faceIndex;
+    c.softNodeCount = 3;
+    c.patchVertices = patch.faces[faceIndex];
     c.barycentric = barycentric;
     c.depth = depth;
     c.normal = normal;
+    // The plane of the node's tool face, moved out by the skin, as detection sets it.
+    c.offset = -dot(normal, pose.apply(model.positions[c.toolNode]) + normal * kSkin);
     contacts.push_back(c);
   }
   void respond(const ResponseSettings& settings = {}, const Pose* previous = nullptr) {

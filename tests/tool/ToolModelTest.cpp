@@ -63,6 +63,7 @@ TEST(ToolModel, PlateGetsAGridOnEveryFaceAndMutualPairsAcrossItsThickness) {
     EXPECT_NEAR(model.probeLengths[i], 0.02, 1e-12);
   }
   EXPECT_EQ(model.mutualPairs, largeFaceNodes);
+  EXPECT_EQ(model.featureEdges.size(), 12u) << "a box has 12 edges; its face diagonals are not edges";
 }
 
 TEST(ToolModel, BoxFaceGridSamplesOnlyTheTwoLargeFaces) {

@@ -25,6 +25,7 @@
 #include <thintool/detection/SoftPatch.h>
 #include <thintool/tool/ToolModel.h>
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -48,15 +49,34 @@ struct DetectionParameters {
   FilterSettings filters; ///< with reverseRayLength resolved to a length > 0
 };
 
-/// One colliding tool node and the soft face it found.
+/// What met what.
+enum class ContactKind : std::uint8_t {
+  ToolRay,    ///< a tool node's ray met a soft face (the paper's contact; discrete detection)
+  SoftNode,   ///< a soft node entered the tool (swept detection)
+  ToolPoint,  ///< a point of the tool met a soft face (swept detection)
+  Edge,       ///< an edge of the tool met an edge of the soft surface (swept detection)
+};
+
+/// One contact of a step: a soft point (a node, a point on an edge or on a face) and the plane
+/// it must end the step on the positive side of: dot(normal, point) + offset >= 0, the tool's
+/// surface moved out by the skin, on the side the soft point came from.
 struct Contact {
-  Index toolNode = kInvalidIndex;
-  Index patchFace = kInvalidIndex;  ///< index in SoftPatch::faces
-  Index softFace = kInvalidIndex;   ///< index in the soft body
-  Vec3 barycentric;  ///< weights of the face's three nodes at the hit point
-  Real depth = 0;    ///< how far the soft face lies inside the tool's surface (m); negative: in the skin only
-  Vec3 normal;       ///< world, unit, out of the tool on the side the face came from
-  Vec3 point;        ///< world, where the node's ray meets the soft face
+  ContactKind kind = ContactKind::ToolRay;
+  Index toolNode = kInvalidIndex;     ///< ToolRay, ToolPoint: the tool's sample node; else kInvalidIndex
+  Index toolFeature = kInvalidIndex;  ///< SoftNode: the face entered; ToolPoint: the hull vertex, if not a node; Edge: the tool edge
+  Index softFace = kInvalidIndex;     ///< ToolRay, ToolPoint: the soft face, in the soft body
+  std::array<Index, 3> softNodes{kInvalidIndex, kInvalidIndex, kInvalidIndex};  ///< in the soft body
+  Index softNodeCount = 0;            ///< 3 for a face, 2 for an edge, 1 for a node
+  Vec3 barycentric;    ///< weights of softNodes at the contact point
+  Real depth = 0;      ///< how far the soft point lies past the tool's surface (m); negative: in the skin only
+  Vec3 normal;         ///< world, unit, out of the tool on the side the soft point came from
+  Vec3 point;          ///< world, the soft point
+  Real offset = 0;     ///< plane offset (m), see above
+  Real timeOfImpact = 1;  ///< fraction of the step when the features met (1: at its end)
+
+  // Core-internal: the same points as indices into the step's SoftPatch.
+  std::array<Index, 3> patchVertices{kInvalidIndex, kInvalidIndex, kInvalidIndex};
+  Index patchFace = kInvalidIndex;
 };
 
 struct DetectionCounters {

@@ -88,6 +88,10 @@ struct ToolModel {
   /// Boxes around each node's inward ray, for finding the rays a soft face can meet.
   AabbTree rayTree;
 
+  /// Edges of the mesh between faces of different planes (the diagonals of a flat face are not
+  /// edges of the solid), as mesh vertex pairs: what can slice between soft nodes.
+  std::vector<std::array<Index, 2>> featureEdges;
+
   Index mutualPairs = 0;    ///< nodes whose partner chose them back
   Index unpairedNodes = 0;  ///< nodes whose association ray found nothing within its length
 
