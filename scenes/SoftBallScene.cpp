@@ -179,8 +179,10 @@ void SoftBallScene::makeToolDynamic(double mass, const btTransform& pose) {
   m_tool->setInterpolationWorldTransform(pose);
   m_tool->setLinearVelocity(btVector3(0, 0, 0));
   m_tool->setAngularVelocity(btVector3(0, 0, 0));
-  // Held level, as a tool in a hand or on a device arm is: it may only translate.
+  // On a vertical slide, as a tool held by a device arm: a frictionless plate on a dome would
+  // otherwise tip or slide off it.
   m_tool->setAngularFactor(0);
+  m_tool->setLinearFactor(btVector3(0, 1, 0));
   m_tool->updateInertiaTensor();
   m_world->addRigidBody(m_tool);
 }

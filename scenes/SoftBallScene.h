@@ -64,8 +64,8 @@ class SoftBallScene {
   double step(const btTransform& toolPose);
   /// Steps once without touching the tool (a dynamic tool moves by itself).
   double step();
-  /// Turns the tool into a dynamic body of the given mass (kg), released at pose at rest and held
-  /// level (angular factor 0).
+  /// Turns the tool into a dynamic body of the given mass (kg), released at pose at rest, free to
+  /// move vertically only (a device's slide).
   void makeToolDynamic(double mass, const btTransform& pose);
 
   btSoftRigidDynamicsWorld& world() { return *m_world; }

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Zlib
 // Copyright (c) 2026 The ThinTool developers
 #include "PairState.h"
+#include "SweptProxy.h"
 #include "ToolAlgorithm.h"
 #include "ToolShape.h"
 
@@ -90,19 +91,31 @@ btCollisionAlgorithm* CollisionConfiguration::createAlgorithm(btCollisionAlgorit
                                                               btCollisionAlgorithmCreateFunc& stock) {
   const btCollisionObjectWrapper* softWrap = swapped ? body1 : body0;
   const btCollisionObjectWrapper* toolWrap = swapped ? body0 : body1;
-  Tool* tool = findTool(*toolWrap->getCollisionObject());
   btSoftBody* softBody = const_cast<btSoftBody*>(btSoftBody::upcast(softWrap->getCollisionObject()));
+  using Mode = detail::ToolAlgorithm::Mode;
+  auto make = [&](Tool& tool, Mode mode, detail::PairState* state) -> btCollisionAlgorithm* {
+    void* memory = info.m_dispatcher1->allocateCollisionAlgorithm(sizeof(detail::ToolAlgorithm));
+    return new (memory) detail::ToolAlgorithm(info, tool, mode, state, softBody, swapped);
+  };
+  if (softBody != nullptr) {
+    const auto proxy = m_proxies.find(toolWrap->getCollisionObject());
+    if (proxy != m_proxies.end()) {
+      return make(*proxy->second, Mode::WholeTool, nullptr);
+    }
+  }
+  Tool* tool = findTool(*toolWrap->getCollisionObject());
   if (tool == nullptr || softBody == nullptr) {
     return stock.CreateCollisionAlgorithm(info, body0, body1);
+  }
+  if (tool->options().swept) {
+    return make(*tool, Mode::Idle, nullptr);  // the proxy's pair does the work
   }
   // Children of a compound arrive with their index; a plain convex body is piece 0.
   const Index piece = tool->pieceCount() > 1 || toolWrap->m_index >= 0 ? static_cast<Index>(toolWrap->m_index) : 0;
   if (piece >= tool->pieceCount()) {
     return stock.CreateCollisionAlgorithm(info, body0, body1);
   }
-  detail::PairState& state = tool->pairState(*softBody, piece);
-  void* memory = info.m_dispatcher1->allocateCollisionAlgorithm(sizeof(detail::ToolAlgorithm));
-  return new (memory) detail::ToolAlgorithm(info, *tool, state, swapped);
+  return make(*tool, Mode::OnePiece, &tool->pairState(*softBody, piece));
 }
 
 btCollisionAlgorithmCreateFunc* CollisionConfiguration::getCollisionAlgorithmCreateFunc(int proxyType0,
@@ -174,16 +187,26 @@ Tool& addTool(btCollisionWorld& world, btRigidBody& body, const ToolOptions& opt
     throw Error("tool '" + name + "': " + error.what());
   }
   Tool& tool = configuration->addTool(body, options);
+  if (tool.options().swept) {
+    tool.m_proxy = std::make_unique<detail::SweptProxy>(tool);
+    configuration->m_proxies.emplace(tool.m_proxy.get(), &tool);
+    world.addCollisionObject(tool.m_proxy.get(), btBroadphaseProxy::DefaultFilter, btBroadphaseProxy::AllFilter);
+  }
   reroutePairs(world, body);
   return tool;
 }
 
 bool removeTool(btCollisionWorld& world, const btRigidBody& body) {
   CollisionConfiguration& configuration = configurationOf(world);
-  if (configuration.findTool(body) == nullptr) {
+  Tool* tool = configuration.findTool(body);
+  if (tool == nullptr) {
     return false;
   }
   // Free the pairs' algorithms before the tool they point to.
+  if (tool->m_proxy != nullptr) {
+    world.removeCollisionObject(tool->m_proxy.get());
+    configuration.m_proxies.erase(tool->m_proxy.get());
+  }
   reroutePairs(world, body);
   return configuration.removeTool(body);
 }

@@ -7,6 +7,7 @@
 // returns, and the pair's algorithm only tells the state when that happens.
 
 #include <thintool/detection/Detection.h>
+#include <thintool/detection/SweptDetection.h>
 #include <thintool/response/Response.h>
 
 #include <memory>
@@ -29,6 +30,10 @@ struct PairState {
   bool live = false;
 
   PairHistory history;
+  SideMemory sides;
+  /// Largest soft node displacement seen in the pair's last step (m): how far beyond the tool's
+  /// swept box to look for soft faces that may cross it.
+  Real softReach = 0;
   SoftPatch patch;
   std::vector<Index> patchVertexOfNode;  ///< soft node -> patch vertex, kInvalidIndex when absent
   std::vector<const btDbvtNode*> traversalStack;
@@ -67,6 +72,7 @@ struct PairState {
   void separate() {
     clearResults();
     history.reset();
+    sides.forget();
     hasPreviousPose = false;
     live = false;
   }

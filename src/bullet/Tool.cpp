@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Zlib
 // Copyright (c) 2026 The ThinTool developers
 #include "PairState.h"
+#include "SweptProxy.h"
 
 #include <thintool/bullet/Convert.h>
 #include <thintool/bullet/Tool.h>
@@ -30,6 +31,26 @@ Tool::Tool(btRigidBody& body, const ToolOptions& options, std::vector<ToolModel>
 }
 
 Tool::~Tool() = default;
+
+void Tool::resetMotion() { m_jumpNext = true; }
+
+void Tool::trackMotion() {
+  const Pose now = toPose(m_body.getWorldTransform());
+  m_poseBefore = m_motionTracked && !m_jumpNext ? m_poseNow : now;
+  m_poseNow = now;
+  m_motionTracked = true;
+  m_jumpNext = false;
+}
+
+void Tool::bodyMotion(Pose& outPrevious, Pose& outCurrent) const {
+  if (!m_body.isStaticOrKinematicObject()) {
+    outPrevious = toPose(m_body.getWorldTransform());
+    outCurrent = toPose(m_body.getInterpolationWorldTransform());
+    return;
+  }
+  outCurrent = toPose(m_body.getWorldTransform());
+  outPrevious = m_motionTracked ? m_poseBefore : outCurrent;
+}
 
 Index Tool::nodeCount() const {
   Index count = 0;

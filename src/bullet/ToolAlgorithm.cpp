@@ -14,6 +14,7 @@
 #include <BulletSoftBody/btSoftBodyInternals.h>
 #include <BulletSoftBody/btSoftBodySolvers.h>
 
+#include <algorithm>
 #include <chrono>
 #include <memory>
 
@@ -99,38 +100,65 @@ void applyResponse(PairState& state, btSoftBody& softBody, const btCollisionObje
 
 }  // namespace
 
-ToolAlgorithm::ToolAlgorithm(const btCollisionAlgorithmConstructionInfo& info, Tool& tool, PairState& state,
-                             bool swapped)
-    : btCollisionAlgorithm(info), m_tool(tool), m_state(state), m_swapped(swapped) {}
+ToolAlgorithm::ToolAlgorithm(const btCollisionAlgorithmConstructionInfo& info, Tool& tool, Mode mode,
+                             PairState* state, btSoftBody* softBody, bool swapped)
+    : btCollisionAlgorithm(info), m_tool(tool), m_mode(mode), m_state(state), m_softBody(softBody), m_swapped(swapped) {}
 
-ToolAlgorithm::~ToolAlgorithm() { m_state.separate(); }
+ToolAlgorithm::~ToolAlgorithm() {
+  if (m_mode == Mode::OnePiece) {
+    m_state->separate();
+  } else if (m_mode == Mode::WholeTool) {
+    for (Index piece = 0; piece < m_tool.pieceCount(); ++piece) {
+      m_tool.pairState(*m_softBody, piece).separate();
+    }
+  }
+}
 
 void ToolAlgorithm::processCollision(const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1,
                                      const btDispatcherInfo& /*dispatchInfo*/, btManifoldResult* /*resultOut*/) {
+  if (m_mode == Mode::Idle) {
+    return;
+  }
   const btCollisionObjectWrapper* softWrap = m_swapped ? body1 : body0;
   const btCollisionObjectWrapper* toolWrap = m_swapped ? body0 : body1;
   btSoftBody& softBody = *const_cast<btSoftBody*>(btSoftBody::upcast(softWrap->getCollisionObject()));
-  const btCollisionObject& toolObject = *toolWrap->getCollisionObject();
-  PairState& state = m_state;
+  const btCollisionObject& toolBody = m_tool.body();
+  if (m_mode == Mode::OnePiece) {
+    const Pose pose = toPose(toolWrap->getWorldTransform());
+    processPiece(*m_state, softBody, toolBody, toolWrap, m_state->hasPreviousPose ? m_state->previousPose : pose, pose,
+                 false);
+    return;
+  }
+  Pose bodyBefore;
+  Pose bodyNow;
+  m_tool.bodyMotion(bodyBefore, bodyNow);
+  for (Index piece = 0; piece < m_tool.pieceCount(); ++piece) {
+    PairState& state = m_tool.pairState(softBody, piece);
+    processPiece(state, softBody, toolBody, toolWrap, bodyBefore * m_tool.pieceTransform(piece),
+                 bodyNow * m_tool.pieceTransform(piece), true);
+  }
+}
+
+void ToolAlgorithm::processPiece(PairState& state, btSoftBody& softBody, const btCollisionObject& toolBody,
+                                 const btCollisionObjectWrapper* toolWrap, const Pose& previousPose, const Pose& pose,
+                                 bool swept) {
   state.clearResults();
   state.live = true;
 
   // As the stock algorithm: pairs the soft body was told to ignore are ignored.
-  if (softBody.m_collisionDisabledObjects.findLinearSearch(&toolObject) != softBody.m_collisionDisabledObjects.size()) {
+  if (softBody.m_collisionDisabledObjects.findLinearSearch(&toolBody) != softBody.m_collisionDisabledObjects.size()) {
     return;
   }
   // The deformable world solves other contact types; hand its pairs to Bullet unchanged.
   if (softBody.getSoftBodySolver() == nullptr ||
       softBody.getSoftBodySolver()->getSolverType() != btSoftBodySolver::DEFAULT_SOLVER) {
     state.unsupported = true;
-    if (softBody.getSoftBodySolver() != nullptr) {
+    if (softBody.getSoftBodySolver() != nullptr && !swept) {
       softBody.getSoftBodySolver()->processCollision(&softBody, toolWrap);
     }
     return;
   }
-
-  const Pose pose = toPose(toolWrap->getWorldTransform());
-  if (!isFinite(pose)) {
+  if (!isFinite(pose) || !isFinite(previousPose)) {
     state.invalidPose = true;
     return;
   }
@@ -143,6 +171,7 @@ void ToolAlgorithm::processCollision(const btCollisionObjectWrapper* body0, cons
     state.facesSeen = softBody.m_faces.size();
     state.patch.orientation = surfaceOrientation(softBody);
     state.patch.positions.reserve(softBody.m_nodes.size());
+    state.patch.previousPositions.reserve(softBody.m_nodes.size());
     state.patch.inverseMasses.reserve(softBody.m_nodes.size());
     state.patch.nodeIds.reserve(softBody.m_nodes.size());
     state.patch.faces.reserve(softBody.m_faces.size());
@@ -150,29 +179,46 @@ void ToolAlgorithm::processCollision(const btCollisionObjectWrapper* body0, cons
     state.contacts.reserve(model.nodeCount());
     state.corrections.reserve(softBody.m_nodes.size());
     state.traversalStack.reserve(256);
+    state.sides.resize(static_cast<Index>(softBody.m_nodes.size()), static_cast<Index>(softBody.m_faces.size()));
   }
 
-  DetectionParameters parameters;
-  parameters.skin = options.skin >= 0 ? options.skin : Real(softBody.getCollisionShape()->getMargin());
-  parameters.filters = options.filters;
-  if (parameters.filters.reverseRayLength <= 0) {
-    parameters.filters.reverseRayLength = length(toVec3(softBody.m_bounds[1] - softBody.m_bounds[0]));
+  const Real skin = options.skin >= 0 ? options.skin : Real(softBody.getCollisionShape()->getMargin());
+  Aabb reach = worldBounds(model.bounds, pose);
+  if (swept) {
+    // The whole motion, and soft faces that move as far as the soft body moved last step.
+    reach.include(worldBounds(model.bounds, previousPose));
+    reach = reach.expanded(2 * state.softReach);
   }
+  gatherPatch(softBody, reach.expanded(skin), state);
 
-  gatherPatch(softBody, worldBounds(model.bounds, pose).expanded(parameters.skin), state);
-  const SoftBodyRayQuery reverseQuery(softBody, state.traversalStack);
-  detectContacts(model, pose, state.patch, &reverseQuery, parameters, state.history, m_tool.m_detectionWorkspace,
-                 state.contacts, state.counters);
+  if (swept) {
+    detectSwept(model, previousPose, pose, state.patch, skin, state.sides, m_tool.m_sweptWorkspace, state.contacts,
+                state.counters);
+    state.softReach = 0;
+    for (Index v = 0; v < state.patch.vertexCount(); ++v) {
+      state.softReach = std::max(state.softReach, length(state.patch.positions[v] - state.patch.previousPositions[v]));
+    }
+  } else {
+    DetectionParameters parameters;
+    parameters.skin = skin;
+    parameters.filters = options.filters;
+    if (parameters.filters.reverseRayLength <= 0) {
+      parameters.filters.reverseRayLength = length(toVec3(softBody.m_bounds[1] - softBody.m_bounds[0]));
+    }
+    const SoftBodyRayQuery reverseQuery(softBody, state.traversalStack);
+    detectContacts(model, pose, state.patch, &reverseQuery, parameters, state.history, m_tool.m_detectionWorkspace,
+                   state.contacts, state.counters);
+  }
   const auto detected = Clock::now();
 
   const btScalar timeStep = softBody.m_sst.sdt;
-  const Pose previousPose = state.hasPreviousPose ? state.previousPose : pose;
-  computeResponse(model, pose, previousPose, state.patch, state.contacts, parameters.skin, timeStep, options.response,
+  ResponseSettings response = options.response;
+  response.guardNodes = response.guardNodes && !swept;  // swept detection tests every node itself
+  computeResponse(model, pose, previousPose, state.patch, state.contacts, skin, timeStep, response,
                   m_tool.m_responseWorkspace, state.corrections, state.wrench);
   state.previousPose = pose;
   state.hasPreviousPose = true;
-
-  applyResponse(state, softBody, toolObject, options.response, timeStep);
+  applyResponse(state, softBody, toolBody, options.response, timeStep);
   releasePatch(state);
   const auto responded = Clock::now();
   state.detectionMicroseconds = microsecondsBetween(start, detected);

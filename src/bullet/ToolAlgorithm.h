@@ -2,10 +2,17 @@
 // Copyright (c) 2026 The ThinTool developers
 #pragma once
 
-// The collision algorithm Bullet's dispatcher calls for a (soft body, tool piece) pair. It owns
-// nothing but its links to the tool and the pair's state, and tells the state when Bullet frees it.
+// The collision algorithm Bullet's dispatcher calls for a soft body and a tool. It owns nothing but
+// its links to the tool and the pairs' state, and tells the state when Bullet frees it.
 
 #include <BulletCollision/BroadphaseCollision/btCollisionAlgorithm.h>
+
+class btSoftBody;
+
+#include <thintool/core/Math.h>
+
+class btCollisionObject;
+struct btCollisionObjectWrapper;
 
 namespace thintool {
 class Tool;
@@ -17,7 +24,14 @@ struct PairState;
 
 class ToolAlgorithm final : public btCollisionAlgorithm {
  public:
-  ToolAlgorithm(const btCollisionAlgorithmConstructionInfo& info, Tool& tool, PairState& state, bool swapped);
+  enum class Mode {
+    OnePiece,   ///< discrete detection: the pair of a soft body and one piece of the tool (a compound's child)
+    WholeTool,  ///< swept detection: the pair of a soft body and the tool's proxy; every piece
+    Idle,       ///< swept detection: the tool body's own pair, which the proxy's pair replaces
+  };
+  /// state: the piece's pair state (OnePiece); softBody: the soft body (WholeTool).
+  ToolAlgorithm(const btCollisionAlgorithmConstructionInfo& info, Tool& tool, Mode mode, PairState* state,
+                btSoftBody* softBody, bool swapped);
   ~ToolAlgorithm() override;
 
   // See: btCollisionAlgorithm::processCollision
@@ -34,8 +48,14 @@ class ToolAlgorithm final : public btCollisionAlgorithm {
   void getAllContactManifolds(btManifoldArray&) override {}
 
  private:
+  // Detection, response and their application for one piece of the tool against softBody.
+  void processPiece(PairState& state, btSoftBody& softBody, const btCollisionObject& toolBody,
+                    const btCollisionObjectWrapper* toolWrap, const Pose& previousPose, const Pose& pose, bool swept);
+
   Tool& m_tool;
-  PairState& m_state;
+  Mode m_mode;
+  PairState* m_state;
+  btSoftBody* m_softBody;
   bool m_swapped;
 };
 

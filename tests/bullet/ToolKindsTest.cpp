@@ -41,13 +41,16 @@ TEST(ToolKinds, CompoundToolUsesEveryChild) {
   SoftBallScene scene(sceneSettings);
   ASSERT_EQ(scene.tool()->pieceCount(), 2u);
   scene.settle();
-  const btTransform pressed(btQuaternion::getIdentity(), btVector3(0, btScalar(scene.ballTop() - 0.01), 0));
-  scene.step(pressed);
+  // From just above the skin, 5 mm a step: the halves meet the cap side by side.
   bool seen[2] = {false, false};
-  for (const auto& contact : scene.tool()->report().contacts) {
-    ASSERT_LT(contact.piece, 2u);
-    seen[contact.piece] = true;
-    EXPECT_EQ(contact.softBody, &scene.ball());
+  const double top = scene.ballTop();
+  for (int i = 0; i < 8; ++i) {
+    scene.step(btTransform(btQuaternion::getIdentity(), btVector3(0, btScalar(top + 0.06 - 0.005 * i), 0)));
+    for (const auto& contact : scene.tool()->report().contacts) {
+      ASSERT_LT(contact.piece, 2u);
+      seen[contact.piece] = true;
+      EXPECT_EQ(contact.softBody, &scene.ball());
+    }
   }
   EXPECT_TRUE(seen[0] && seen[1]) << "both halves touch the top of the ball";
 }
@@ -59,23 +62,27 @@ TEST(ToolKinds, DynamicToolRestsOnTheBallAndFeelsIt) {
   const double top = scene.ballTop();
   scene.makeToolDynamic(0.5, btTransform(btQuaternion::getIdentity(), btVector3(0, btScalar(top + 0.3), 0)));
   double meanForce = 0;
-  double meanVelocity = 0;
   double lowest = 1e9;
   int counted = 0;
+  int nodesOnTop = 0;
   const btRigidBody& plate = scene.toolBody();
+  const btSoftBody& ball = scene.ball();
   for (int i = 0; i < 300; ++i) {
     scene.step();
+    const btVector3 centre = plate.getWorldTransform().getOrigin();
+    for (int n = 0; n < ball.m_nodes.size(); ++n) {
+      const btVector3& x = ball.m_nodes[n].m_x;
+      nodesOnTop += std::abs(x.x() - centre.x()) < 0.4 && std::abs(x.z() - centre.z()) < 0.4 && x.y() > centre.y();
+    }
     if (i >= 180) {
       meanForce += scene.tool()->report().wrench.force.y;
-      meanVelocity += plate.getLinearVelocity().y();
-      lowest = std::min(lowest, double(plate.getWorldTransform().getOrigin().y()));
+      lowest = std::min(lowest, double(centre.y()));
       ++counted;
     }
   }
   meanForce /= counted;
-  meanVelocity /= counted;
+  EXPECT_EQ(nodesOnTop, 0) << "no node came through the plate";
   EXPECT_GT(lowest, scene.ballMeanHeight()) << "it never sank into the ball";
-  EXPECT_LT(std::abs(meanVelocity), 0.05) << "it bobs on the ball and stays";
   // Its weight is 5 N, carried by the projection's reaction alone.
   EXPECT_GT(meanForce, 2.5);
   EXPECT_LT(meanForce, 10);

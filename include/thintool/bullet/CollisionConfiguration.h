@@ -69,6 +69,8 @@ class CollisionConfiguration : public btSoftBodyRigidBodyCollisionConfiguration 
                                         const btCollisionObjectWrapper* body1, bool swapped,
                                         btCollisionAlgorithmCreateFunc& stock);
   std::unordered_map<const btCollisionObject*, std::unique_ptr<Tool>> m_tools;
+  /// Swept tools' broadphase proxies, and their tools.
+  std::unordered_map<const btCollisionObject*, Tool*> m_proxies;
   std::uint64_t m_toolsCreated = 0;
   std::unique_ptr<CreateFunc> m_createFunc;
   std::unique_ptr<CreateFunc> m_swappedCreateFunc;

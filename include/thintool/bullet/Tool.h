@@ -7,6 +7,7 @@
 
 #include <thintool/bullet/ToolOptions.h>
 #include <thintool/detection/Detection.h>
+#include <thintool/detection/SweptDetection.h>
 #include <thintool/response/Response.h>
 #include <thintool/tool/ToolModel.h>
 
@@ -14,8 +15,11 @@
 #include <string>
 #include <vector>
 
+class btCollisionObject;
+class btCollisionWorld;
 class btRigidBody;
 class btSoftBody;
+class btTransform;
 
 namespace thintool {
 
@@ -45,6 +49,11 @@ struct ToolDiagnostics {
   Index invalidPosePairs = 0;
 };
 
+class Tool;
+struct ToolOptions;
+Tool& addTool(btCollisionWorld& world, btRigidBody& body, const ToolOptions& options);
+bool removeTool(btCollisionWorld& world, const btRigidBody& body);
+
 struct ToolStepReport {
   std::vector<ToolContact> contacts;
   ToolDiagnostics diagnostics;
@@ -57,6 +66,7 @@ class CollisionConfiguration;
 namespace detail {
 struct PairState;
 class ToolAlgorithm;
+class SweptProxy;
 }  // namespace detail
 
 /// Created by addTool(); owned by the world's thintool::CollisionConfiguration.
@@ -83,17 +93,38 @@ class Tool {
   /// stepSimulation() returns; the reference stays valid until the next call.
   const ToolStepReport& report();
 
+  /// Declares that the tool's next move is a jump (re-homing a device, a pose set by hand), not
+  /// a motion: swept detection then does not sweep the space in between for one step.
+  void resetMotion();
+
  private:
   friend class detail::ToolAlgorithm;
+  friend class detail::SweptProxy;
   friend class CollisionConfiguration;
+  friend Tool& addTool(btCollisionWorld&, btRigidBody&, const ToolOptions&);
+  friend bool removeTool(btCollisionWorld&, const btRigidBody&);
   detail::PairState& pairState(btSoftBody& softBody, Index piece);
+  /// Swept detection's view of the tool's motion in this step: the body's pose at its start and at
+  /// its end. Kinematic and static tools: the pose the last time the proxy's box was updated, and
+  /// now. Dynamic tools: Bullet's pose now and its unconstrained prediction for the step's end.
+  void bodyMotion(Pose& outPrevious, Pose& outCurrent) const;
+  /// Called once per simulation step, when Bullet updates the proxy's box: moves "now" to "before".
+  void trackMotion();
 
   btRigidBody& m_body;
   ToolOptions m_options;
   std::vector<ToolModel> m_pieces;
   std::vector<Pose> m_pieceTransforms;
   std::vector<std::unique_ptr<detail::PairState>> m_pairs;
+  /// With swept detection: the collision object whose box is the tool's swept box, so that Bullet
+  /// makes a pair with every soft body the tool sweeps past (the tool's own box is not swept).
+  std::unique_ptr<detail::SweptProxy> m_proxy;
+  Pose m_poseBefore;
+  Pose m_poseNow;
+  bool m_motionTracked = false;
+  bool m_jumpNext = false;
   DetectionWorkspace m_detectionWorkspace;
+  SweptWorkspace m_sweptWorkspace;
   ResponseWorkspace m_responseWorkspace;
   ToolStepReport m_report;
 };

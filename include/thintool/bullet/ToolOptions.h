@@ -27,12 +27,24 @@ struct ToolOptions {
   /// stock soft–rigid contact does.
   Real skin = -1;
 
+  /// Swept detection (detection/SweptDetection.h): contacts over the whole motion of a step, so a
+  /// tool moving farther than its thickness per step never passes through. Off, the paper's
+  /// discrete rays and checks run at the end of the step only, as in the paper.
+  bool swept = true;
+  /// The paper's filters; used by the discrete detection only (swept detection knows each
+  /// contact's side from the motion).
   FilterSettings filters;
   ResponseSettings response;
 
-  /// The paper's Fig. 7 (right) ablation: rays only, without association and both checks.
-  static ToolOptions rayOnly() {
+  /// The paper's algorithm as published: discrete rays, association, both checks.
+  static ToolOptions paper() {
     ToolOptions options;
+    options.swept = false;
+    return options;
+  }
+  /// The paper's Fig. 7 (right) ablation: discrete rays only, without association and both checks.
+  static ToolOptions rayOnly() {
+    ToolOptions options = paper();
     options.association.enabled = false;
     options.filters.check1 = false;
     options.filters.check2 = false;

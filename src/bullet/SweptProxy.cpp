@@ -1,0 +1,45 @@
+// SPDX-License-Identifier: Zlib
+// Copyright (c) 2026 The ThinTool developers
+#include "SweptProxy.h"
+
+#include <thintool/bullet/Convert.h>
+#include <thintool/bullet/Tool.h>
+
+#include <BulletSoftBody/btSoftBody.h>
+
+namespace thintool::detail {
+
+SweptProxy::SweptProxy(Tool& tool) : m_tool(tool), m_shape(tool) {
+  setCollisionShape(&m_shape);
+  setCollisionFlags(CF_KINEMATIC_OBJECT | CF_NO_CONTACT_RESPONSE);
+  setActivationState(DISABLE_DEACTIVATION);
+  m_checkCollideWith = 1;
+}
+
+bool SweptProxy::checkCollideWithOverride(const btCollisionObject* other) const {
+  return btSoftBody::upcast(other) != nullptr;
+}
+
+void SweptProxy::Shape::getAabb(const btTransform& /*transform*/, btVector3& outMin, btVector3& outMax) const {
+  m_tool.trackMotion();
+  Pose before;
+  Pose now;
+  m_tool.bodyMotion(before, now);
+  Aabb box;
+  for (Index piece = 0; piece < m_tool.pieceCount(); ++piece) {
+    const Aabb& local = m_tool.piece(piece).bounds;
+    for (const Pose& body : {before, now}) {
+      const Pose pose = body * m_tool.pieceTransform(piece);
+      for (int corner = 0; corner < 8; ++corner) {
+        box.include(pose.apply({(corner & 1) ? local.max.x : local.min.x, (corner & 2) ? local.max.y : local.min.y,
+                                (corner & 4) ? local.max.z : local.min.z}));
+      }
+    }
+  }
+  // The skin, when the tool fixes it; a soft body's own margin is already in its box.
+  const Real skin = m_tool.options().skin > 0 ? m_tool.options().skin : 0;
+  outMin = toBt(box.min - Vec3{skin, skin, skin});
+  outMax = toBt(box.max + Vec3{skin, skin, skin});
+}
+
+}  // namespace thintool::detail

@@ -1,0 +1,275 @@
+// SPDX-License-Identifier: Zlib
+// Copyright (c) 2026 The ThinTool developers
+#include <thintool/detection/SweptDetection.h>
+#include <thintool/geometry/Ccd.h>
+#include <thintool/geometry/RayTriangle.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace thintool {
+
+namespace {
+
+// Below this fraction of the tool's size a feature counts as lying on the other one: its side
+// cannot be read from the geometry and comes from memory instead.
+constexpr Real kOnSurface = 1e-9;
+
+Aabb boxOf(std::initializer_list<Vec3> points) {
+  Aabb box;
+  for (const Vec3& p : points) box.include(p);
+  return box;
+}
+
+int signOf(Real value) { return (value > 0) - (value < 0); }
+
+// Barycentric coordinates clamped into the triangle, so that a contact's point lies on the face.
+Vec3 clampedBarycentric(Vec3 w) {
+  w = {std::max<Real>(w.x, 0), std::max<Real>(w.y, 0), std::max<Real>(w.z, 0)};
+  const Real sum = w.x + w.y + w.z;
+  return sum > 0 ? w / sum : Vec3{Real(1) / 3, Real(1) / 3, Real(1) / 3};
+}
+
+// Everything one call shares, so that the three kinds of test read like the rules they apply.
+struct Sweep {
+  const ToolModel& model;
+  const Pose& pose;
+  const SoftPatch& patch;
+  Real skin;
+  Real onSurface;
+  SideMemory& memory;
+  const std::vector<Vec3>& start;
+  const std::vector<Vec3>& end;
+  std::vector<Contact>& out;
+  DetectionCounters& counters;
+
+  // A contact asking the soft point, made of up to three patch vertices with the given weights,
+  // to end on the positive side of the plane through toolPoint (tool frame) with normal
+  // direction (tool frame), the skin away.
+  void emit(ContactKind kind, const Index* vertices, Index count, const Vec3& weights, const Vec3& toolPoint,
+            const Vec3& direction, Real timeOfImpact, Index toolNode, Index toolFeature, Index face) {
+    Contact contact;
+    contact.kind = kind;
+    contact.normal = pose.applyToDirection(direction);
+    contact.offset = -(dot(contact.normal, pose.apply(toolPoint)) + skin);
+    Vec3 point;
+    for (Index k = 0; k < count; ++k) {
+      contact.patchVertices[k] = vertices[k];
+      contact.softNodes[k] = patch.nodeIds[vertices[k]];
+      point += patch.positions[vertices[k]] * weights[k];
+    }
+    const Real clearance = dot(contact.normal, point) + contact.offset;
+    if (!(clearance < 0)) {
+      return;  // already where it must be
+    }
+    contact.softNodeCount = count;
+    contact.barycentric = weights;
+    contact.point = point;
+    contact.depth = -clearance - skin;
+    contact.timeOfImpact = timeOfImpact;
+    contact.toolNode = toolNode;
+    contact.toolFeature = toolFeature;
+    if (face != kInvalidIndex) {
+      contact.patchFace = face;
+      contact.softFace = patch.faceIds[face];
+    }
+    counters.maxDepth = std::max(counters.maxDepth, contact.depth);
+    out.push_back(contact);
+  }
+
+  // A soft node's segment against the tool grown by the skin.
+  void softNode(Index v) {
+    const ClipResult clip = clipSegmentConvex(model.planes, skin, start[v], end[v]);
+    if (!clip.hit) {
+      return;
+    }
+    ++counters.candidates;
+    const Index id = patch.nodeIds[v];
+    Index plane = clip.enterPlane;
+    if (plane == kInvalidIndex) {
+      plane = memory.nodeSide(id);
+    }
+    if (plane == kInvalidIndex) {
+      // Inside from the start with no memory: the face it is least inside of.
+      Real best = -std::numeric_limits<Real>::max();
+      for (Index p = 0; p < model.planes.size(); ++p) {
+        const Real d = model.planes[p].signedDistance(start[v]);
+        if (d > best) {
+          best = d;
+          plane = p;
+        }
+      }
+    }
+    memory.setNodeSide(id, plane);
+    const Plane& face = model.planes[plane];
+    emit(ContactKind::SoftNode, &v, 1, {1, 0, 0}, face.normal * face.offset, face.normal, clip.enter, kInvalidIndex,
+         plane, kInvalidIndex);
+  }
+
+  // A static tool point against a moving soft face.
+  void toolPoint(const Vec3& p, Index toolNode, Index toolFeature, Index f) {
+    ++counters.triangleTests;
+    const auto& corners = patch.faces[f];
+    const Vec3 &a0 = start[corners[0]], &b0 = start[corners[1]], &c0 = start[corners[2]];
+    const Vec3 &a1 = end[corners[0]], &b1 = end[corners[1]], &c1 = end[corners[2]];
+    const Vec3 n0 = normalizedOrZero(triangleNormal(a0, b0, c0));
+    const Vec3 n1 = normalizedOrZero(triangleNormal(a1, b1, c1));
+    if (lengthSquared(n0) == 0 || lengthSquared(n1) == 0) {
+      return;  // a collapsed face: its nodes' own contacts handle it
+    }
+    const Real startDistance = dot(n0, p - a0);
+    int side = std::abs(startDistance) > onSurface ? signOf(startDistance) : memory.faceSide(patch.faceIds[f]);
+    if (side == 0) {
+      return;
+    }
+    // Keep the side's sign continuous if the face turned over during the step.
+    const int endSide = dot(n0, n1) >= 0 ? side : -side;
+    const Real endDistance = dot(n1, p - a1);
+    Vec3 weights;
+    const bool overFace = projectOntoTriangle(p, a1, b1, c1, weights) && weights.x >= -kOverlapTolerance &&
+                          weights.y >= -kOverlapTolerance && weights.z >= -kOverlapTolerance;
+    Real timeOfImpact = 1;
+    bool touching = overFace && endSide * endDistance < skin;
+    if (signOf(endDistance) != endSide) {
+      const PointTriangleCcd crossing = pointTriangleCcd(p, a0, b0, c0, a1, b1, c1);
+      if (crossing.hit) {
+        touching = true;
+        timeOfImpact = crossing.t;
+        if (!overFace) {
+          projectOntoTriangle(p, a1, b1, c1, weights);
+        }
+      }
+    }
+    if (!touching) {
+      return;
+    }
+    ++counters.candidates;
+    memory.setFaceSide(patch.faceIds[f], side);
+    // The face must stay on its own side of the point: from the point, towards -endSide·n1.
+    emit(ContactKind::ToolPoint, corners.data(), 3, clampedBarycentric(weights), p, n1 * Real(-endSide), timeOfImpact,
+         toolNode, toolFeature, f);
+  }
+
+  // A static tool edge against a moving soft edge (patch vertices e0, e1).
+  void edge(Index toolEdge, Index e0, Index e1) {
+    ++counters.triangleTests;
+    const Vec3& p0 = model.mesh.vertices[model.featureEdges[toolEdge][0]];
+    const Vec3& p1 = model.mesh.vertices[model.featureEdges[toolEdge][1]];
+    const Vec3 along = p1 - p0;
+    const Vec3 w0 = cross(along, start[e1] - start[e0]);
+    const Vec3 w1 = cross(along, end[e1] - end[e0]);
+    const Real w0Length = length(w0);
+    const Real w1Length = length(w1);
+    const Real scale = length(along) * std::max(length(start[e1] - start[e0]), length(end[e1] - end[e0]));
+    if (!(w0Length > kOnSurface * scale) || !(w1Length > kOnSurface * scale)) {
+      return;  // parallel edges: the point and node tests cover them
+    }
+    const Real startDistance = dot(w0 / w0Length, start[e0] - p0);
+    if (!(std::abs(startDistance) > onSurface)) {
+      return;
+    }
+    const int side = signOf(startDistance);
+    const int endSide = dot(w0, w1) >= 0 ? side : -side;
+    const Vec3 normal = w1 / w1Length;
+    Real u = 0, s = 0;
+    closestPointsOfSegments(p0, p1, end[e0], end[e1], u, s);
+    const bool interior = u > 0 && u < 1 && s > 0 && s < 1;
+    Real timeOfImpact = 1;
+    bool touching = interior && endSide * dot(normal, end[e0] - p0) < skin;
+    if (signOf(dot(normal, end[e0] - p0)) != endSide) {
+      const EdgeEdgeCcd crossing = edgeEdgeCcd(p0, p1, start[e0], start[e1], end[e0], end[e1]);
+      if (crossing.hit) {
+        touching = true;
+        timeOfImpact = crossing.t;
+      }
+    }
+    if (!touching) {
+      return;
+    }
+    ++counters.candidates;
+    const Index vertices[2] = {e0, e1};
+    emit(ContactKind::Edge, vertices, 2, {1 - s, s, 0}, p0 + along * u, normal * Real(endSide), timeOfImpact,
+         kInvalidIndex, toolEdge, kInvalidIndex);
+  }
+};
+
+}  // namespace
+
+void SideMemory::resize(Index softNodes, Index softFaces) {
+  if (m_nodeStamp.size() != softNodes) {
+    m_nodePlane.assign(softNodes, kInvalidIndex);
+    m_nodeStamp.assign(softNodes, 0);
+  }
+  if (m_faceStamp.size() != softFaces) {
+    m_faceSideSign.assign(softFaces, 0);
+    m_faceStamp.assign(softFaces, 0);
+  }
+}
+
+void detectSwept(const ToolModel& model, const Pose& previousPose, const Pose& pose, const SoftPatch& patch, Real skin,
+                 SideMemory& memory, SweptWorkspace& work, std::vector<Contact>& outContacts,
+                 DetectionCounters& outCounters) {
+  outContacts.clear();
+  outCounters = DetectionCounters{};
+  outCounters.facesGathered = patch.faceCount();
+  memory.beginStep();
+
+  const Index vertexCount = patch.vertexCount();
+  work.m_start.resize(vertexCount);
+  work.m_end.resize(vertexCount);
+  work.m_valid.resize(vertexCount);
+  for (Index v = 0; v < vertexCount; ++v) {
+    work.m_valid[v] = isFinite(patch.positions[v]) && isFinite(patch.previousPositions[v]) ? 1 : 0;
+    work.m_start[v] = previousPose.applyInverse(patch.previousPositions[v]);
+    work.m_end[v] = pose.applyInverse(patch.positions[v]);
+  }
+  const Real size = length(model.bounds.extent());
+  Sweep sweep{model, pose, patch, skin, kOnSurface * size, memory, work.m_start, work.m_end, outContacts, outCounters};
+
+  // Soft nodes against the solid.
+  for (Index v = 0; v < vertexCount; ++v) {
+    if (work.m_valid[v] && patch.inverseMasses[v] > 0) {
+      sweep.softNode(v);
+    }
+  }
+
+  // Tool points against soft faces, and tool edges against the faces' edges.
+  for (Index f = 0; f < patch.faceCount(); ++f) {
+    const auto& corners = patch.faces[f];
+    if (!work.m_valid[corners[0]] || !work.m_valid[corners[1]] || !work.m_valid[corners[2]]) {
+      ++outCounters.skippedFaces;
+      continue;
+    }
+    const Aabb swept = boxOf({work.m_start[corners[0]], work.m_start[corners[1]], work.m_start[corners[2]],
+                              work.m_end[corners[0]], work.m_end[corners[1]], work.m_end[corners[2]]})
+                           .expanded(skin);
+    if (!swept.overlaps(model.bounds)) {
+      continue;
+    }
+    model.rayTree.queryOverlap(swept, [&](Index node) {
+      if (swept.contains(model.positions[node])) {
+        ++outCounters.nodesTested;
+        sweep.toolPoint(model.positions[node], node, kInvalidIndex, f);
+      }
+    });
+    for (Index corner = 0; corner < model.mesh.vertices.size(); ++corner) {
+      if (swept.contains(model.mesh.vertices[corner])) {
+        sweep.toolPoint(model.mesh.vertices[corner], kInvalidIndex, corner, f);
+      }
+    }
+    for (Index e = 0; e < model.featureEdges.size(); ++e) {
+      const Vec3& p0 = model.mesh.vertices[model.featureEdges[e][0]];
+      const Vec3& p1 = model.mesh.vertices[model.featureEdges[e][1]];
+      if (!swept.overlaps(Aabb::fromPoints(p0, p1))) {
+        continue;
+      }
+      for (int k = 0; k < 3; ++k) {
+        sweep.edge(e, corners[k], corners[(k + 1) % 3]);
+      }
+    }
+  }
+  outCounters.colliding = static_cast<Index>(outContacts.size());
+}
+
+}  // namespace thintool
