@@ -107,48 +107,63 @@ struct Sweep {
          plane, kInvalidIndex);
   }
 
-  // A static tool point against a moving soft face.
-  void toolPoint(const Vec3& p, Index toolNode, Index toolFeature, Index f) {
-    ++counters.triangleTests;
+  // A soft face's motion, read once for all the tool points near it.
+  struct FaceMotion {
+    Index face = kInvalidIndex;
+    const Vec3 *a0 = nullptr, *b0 = nullptr, *c0 = nullptr, *a1 = nullptr, *b1 = nullptr, *c1 = nullptr;
+    Vec3 n0, n1;          // unit normals at the start and the end
+    bool turned = false;  // the face turned over during the step
+  };
+
+  bool faceMotion(Index f, FaceMotion& motion) const {
     const auto& corners = patch.faces[f];
-    const Vec3 &a0 = start[corners[0]], &b0 = start[corners[1]], &c0 = start[corners[2]];
-    const Vec3 &a1 = end[corners[0]], &b1 = end[corners[1]], &c1 = end[corners[2]];
-    const Vec3 n0 = normalizedOrZero(triangleNormal(a0, b0, c0));
-    const Vec3 n1 = normalizedOrZero(triangleNormal(a1, b1, c1));
-    if (lengthSquared(n0) == 0 || lengthSquared(n1) == 0) {
-      return;  // a collapsed face: its nodes' own contacts handle it
-    }
-    const Real startDistance = dot(n0, p - a0);
-    int side = std::abs(startDistance) > onSurface ? signOf(startDistance) : memory.faceSide(patch.faceIds[f]);
+    motion = {f, &start[corners[0]], &start[corners[1]], &start[corners[2]], &end[corners[0]], &end[corners[1]],
+           &end[corners[2]], {}, {}, false};
+    motion.n0 = normalizedOrZero(triangleNormal(*motion.a0, *motion.b0, *motion.c0));
+    motion.n1 = normalizedOrZero(triangleNormal(*motion.a1, *motion.b1, *motion.c1));
+    motion.turned = dot(motion.n0, motion.n1) < 0;
+    // A collapsed face has no side: its nodes' own contacts handle it.
+    return lengthSquared(motion.n0) > 0 && lengthSquared(motion.n1) > 0;
+  }
+
+  // A static tool point against a moving soft face.
+  void toolPoint(Index point, const FaceMotion& face) {
+    ++counters.triangleTests;
+    const Vec3& p = model.points[point];
+    const Real startDistance = dot(face.n0, p - *face.a0);
+    const int side =
+        std::abs(startDistance) > onSurface ? signOf(startDistance) : memory.faceSide(patch.faceIds[face.face]);
     if (side == 0) {
       return;
     }
-    // Keep the side's sign continuous if the face turned over during the step.
-    const int endSide = dot(n0, n1) >= 0 ? side : -side;
-    const Real endDistance = dot(n1, p - a1);
+    const int endSide = face.turned ? -side : side;  // the side's sign, followed through a turn-over
+    const Real endDistance = dot(face.n1, p - *face.a1);
+    const bool crossed = signOf(endDistance) != endSide;
+    if (!crossed && endSide * endDistance >= skin) {
+      return;  // clear of the face at the end, and never through it
+    }
     Vec3 weights;
-    const bool overFace = projectOntoTriangle(p, a1, b1, c1, weights) && weights.x >= -kOverlapTolerance &&
-                          weights.y >= -kOverlapTolerance && weights.z >= -kOverlapTolerance;
+    const bool overFace = projectOntoTriangle(p, *face.a1, *face.b1, *face.c1, weights) &&
+                          weights.x >= -kOverlapTolerance && weights.y >= -kOverlapTolerance &&
+                          weights.z >= -kOverlapTolerance;
     Real timeOfImpact = 1;
-    bool touching = overFace && endSide * endDistance < skin;
-    if (signOf(endDistance) != endSide) {
-      const PointTriangleCcd crossing = pointTriangleCcd(p, a0, b0, c0, a1, b1, c1);
-      if (crossing.hit) {
-        touching = true;
-        timeOfImpact = crossing.t;
-        if (!overFace) {
-          projectOntoTriangle(p, a1, b1, c1, weights);
-        }
-      }
+    bool touching = overFace && !crossed;
+    if (crossed) {
+      const PointTriangleCcd crossing =
+          pointTriangleCcd(p, *face.a0, *face.b0, *face.c0, *face.a1, *face.b1, *face.c1);
+      touching = crossing.hit || overFace;
+      timeOfImpact = crossing.hit ? crossing.t : 1;
     }
     if (!touching) {
       return;
     }
     ++counters.candidates;
-    memory.setFaceSide(patch.faceIds[f], side);
+    memory.setFaceSide(patch.faceIds[face.face], side);
+    const bool isNode = point < model.nodeCount();
     // The face must stay on its own side of the point: from the point, towards -endSide·n1.
-    emit(ContactKind::ToolPoint, corners.data(), 3, clampedBarycentric(weights), p, n1 * Real(-endSide), timeOfImpact,
-         toolNode, toolFeature, f);
+    emit(ContactKind::ToolPoint, patch.faces[face.face].data(), 3, clampedBarycentric(weights), p,
+         face.n1 * Real(-endSide), timeOfImpact, isNode ? point : kInvalidIndex,
+         isNode ? kInvalidIndex : point - model.nodeCount(), face.face);
   }
 
   // A static tool edge against a moving soft edge (patch vertices e0, e1).
@@ -172,12 +187,16 @@ struct Sweep {
     const int side = signOf(startDistance);
     const int endSide = dot(w0, w1) >= 0 ? side : -side;
     const Vec3 normal = w1 / w1Length;
+    const Real endDistance = dot(normal, end[e0] - p0);
+    const bool crossed = signOf(endDistance) != endSide;
+    if (!crossed && endSide * endDistance >= skin) {
+      return;  // the lines are clear at the end, and the edges never passed each other
+    }
     Real u = 0, s = 0;
     closestPointsOfSegments(p0, p1, end[e0], end[e1], u, s);
-    const bool interior = u > 0 && u < 1 && s > 0 && s < 1;
     Real timeOfImpact = 1;
-    bool touching = interior && endSide * dot(normal, end[e0] - p0) < skin;
-    if (signOf(dot(normal, end[e0] - p0)) != endSide) {
+    bool touching = !crossed && u > 0 && u < 1 && s > 0 && s < 1;
+    if (crossed) {
       const EdgeEdgeCcd crossing = edgeEdgeCcd(p0, p1, start[e0], start[e1], end[e0], end[e1]);
       if (crossing.hit) {
         touching = true;
@@ -228,8 +247,10 @@ void detectSwept(const ToolModel& model, const Pose& previousPose, const Pose& p
   Sweep sweep{model, pose, patch, skin, kOnSurface * size, memory, work.m_start, work.m_end, outContacts, outCounters};
 
   // Soft nodes against the solid.
+  const Aabb grownTool = model.bounds.expanded(skin);
   for (Index v = 0; v < vertexCount; ++v) {
-    if (work.m_valid[v] && patch.inverseMasses[v] > 0) {
+    if (work.m_valid[v] && patch.inverseMasses[v] > 0 &&
+        Aabb::fromPoints(work.m_start[v], work.m_end[v]).overlaps(grownTool)) {
       sweep.softNode(v);
     }
   }
@@ -247,17 +268,18 @@ void detectSwept(const ToolModel& model, const Pose& previousPose, const Pose& p
     if (!swept.overlaps(model.bounds)) {
       continue;
     }
-    model.rayTree.queryOverlap(swept, [&](Index node) {
-      if (swept.contains(model.positions[node])) {
+    // The face's motion is read when the first tool point near it turns up.
+    Sweep::FaceMotion motion;
+    int motionKnown = 0;  // 0 not yet, 1 read, -1 collapsed
+    model.pointTree.queryOverlap(swept, [&](Index point) {
+      if (motionKnown == 0) {
+        motionKnown = sweep.faceMotion(f, motion) ? 1 : -1;
+      }
+      if (motionKnown > 0) {
         ++outCounters.nodesTested;
-        sweep.toolPoint(model.positions[node], node, kInvalidIndex, f);
+        sweep.toolPoint(point, motion);
       }
     });
-    for (Index corner = 0; corner < model.mesh.vertices.size(); ++corner) {
-      if (swept.contains(model.mesh.vertices[corner])) {
-        sweep.toolPoint(model.mesh.vertices[corner], kInvalidIndex, corner, f);
-      }
-    }
     for (Index e = 0; e < model.featureEdges.size(); ++e) {
       const Vec3& p0 = model.mesh.vertices[model.featureEdges[e][0]];
       const Vec3& p1 = model.mesh.vertices[model.featureEdges[e][1]];

@@ -9,7 +9,7 @@ namespace thintool {
 
 namespace {
 
-constexpr int kBisections = 60;          // halves [0, 1] down to 1e-18
+constexpr int kRefinements = 60;  // at most; the Illinois method needs far fewer
 constexpr int kCoplanarMotionSamples = 8;  // when the features stay coplanar all step
 
 Real cube(Real x) { return x * x * x; }
@@ -18,7 +18,7 @@ Real cube(Real x) { return x * x * x; }
 Real evaluate(const Real (&c)[4], Real t) { return ((c[3] * t + c[2]) * t + c[1]) * t + c[0]; }
 
 // The roots of f in [0, 1], ascending, up to three: bracketed between the turning points and
-// refined by bisection; a turning point within tolerance of zero counts as a root.
+// refined by regula falsi; a turning point within tolerance of zero counts as a root.
 int rootsInUnitInterval(const Real (&c)[4], Real tolerance, Real (&outRoots)[5]) {
   Real breaks[4] = {0, 1, 1, 1};
   int breakCount = 1;
@@ -65,17 +65,30 @@ int rootsInUnitInterval(const Real (&c)[4], Real tolerance, Real (&outRoots)[5])
     if ((fLow < 0) == (fHigh < 0)) {
       continue;
     }
-    for (int i = 0; i < kBisections && high - low > 0; ++i) {
-      const Real middle = 0.5 * (low + high);
-      const Real fMiddle = evaluate(c, middle);
-      if ((fMiddle < 0) == (fLow < 0)) {
-        low = middle;
-        fLow = fMiddle;
+    // Illinois regula falsi: the bracket always holds the root, and halving the stale end's
+    // value keeps it from converging from one side only.
+    Real fHighBracket = fHigh;
+    Real root = low;
+    int staleSide = 0;
+    for (int i = 0; i < kRefinements; ++i) {
+      root = (low * fHighBracket - high * fLow) / (fHighBracket - fLow);
+      const Real fRoot = evaluate(c, root);
+      if (std::abs(fRoot) <= tolerance || high - low <= 1e-15) {
+        break;
+      }
+      if ((fRoot < 0) == (fLow < 0)) {
+        low = root;
+        fLow = fRoot;
+        if (staleSide == -1) fHighBracket *= 0.5;
+        staleSide = -1;
       } else {
-        high = middle;
+        high = root;
+        fHighBracket = fRoot;
+        if (staleSide == 1) fLow *= 0.5;
+        staleSide = 1;
       }
     }
-    add(0.5 * (low + high));
+    add(root);
   }
   return count;
 }

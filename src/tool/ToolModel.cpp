@@ -400,6 +400,15 @@ ToolModel buildToolModel(const ConvexMesh& mesh, const ToolModelSettings& settin
   }
   model.rayTree.build(rayBoxes);
 
+  model.points = model.positions;
+  model.points.insert(model.points.end(), mesh.vertices.begin(), mesh.vertices.end());
+  std::vector<Aabb> pointBoxes;
+  pointBoxes.reserve(model.points.size());
+  for (const Vec3& p : model.points) {
+    pointBoxes.push_back(Aabb::fromPoints(p, p));
+  }
+  model.pointTree.build(pointBoxes);
+
   if (settings.association.enabled) {
     const Real maxLength = settings.association.maxRayLength > 0 ? settings.association.maxRayLength
                                                                   : kAutoAssociationFactor * model.thickness;

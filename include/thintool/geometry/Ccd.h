@@ -12,8 +12,8 @@
 ///   the four points become coplanar is a root of a cubic (point–triangle) or of a quadratic
 ///   (edge–edge, since one edge does not move), after Provot, "Collision and self-collision
 ///   handling in cloth model dedicated to design garments", 1997. Roots are bracketed between the
-///   polynomial's turning points and refined by bisection, so no root in [0, 1] is lost to a
-///   closed-form formula's cancellation; a turning point within kCoplanarTolerance of zero counts
+///   polynomial's turning points and refined by regula falsi (the Illinois variant, which keeps the
+///   root bracketed), so no root in [0, 1] is lost to a closed-form formula's cancellation; a turning point within kCoplanarTolerance of zero counts
 ///   as a (grazing) root. At each root the features must overlap within kOverlapTolerance of
 ///   their size.
 /// Conservative by construction: a crossing is reported if the features meet within the

@@ -88,6 +88,11 @@ struct ToolModel {
   /// Boxes around each node's inward ray, for finding the rays a soft face can meet.
   AabbTree rayTree;
 
+  /// The tool's points for swept detection: its sample nodes, then the hull's corners, and a tree
+  /// over them. Point i < nodeCount() is node i; the others are mesh vertex i - nodeCount().
+  std::vector<Vec3> points;
+  AabbTree pointTree;
+
   /// Edges of the mesh between faces of different planes (the diagonals of a flat face are not
   /// edges of the solid), as mesh vertex pairs: what can slice between soft nodes.
   std::vector<std::array<Index, 2>> featureEdges;
