@@ -32,6 +32,7 @@ Variant variantOf(Algorithm algorithm) {
     case Algorithm::StockB:
       return {0.25, 1, 10, 0.25};
     case Algorithm::StockE:
+    case Algorithm::ThinToolPaper:
     case Algorithm::ThinTool:
       break;
   }
@@ -48,10 +49,12 @@ const char* algorithmName(Algorithm algorithm) {
       return "stock B (kKHR 1, 10 it.)";
     case Algorithm::StockE:
       return "stock E (B, skin 0.05)";
+    case Algorithm::ThinToolPaper:
+      return "ThinTool, paper (discrete)";
     case Algorithm::ThinTool:
       break;
   }
-  return "ThinTool (E's soft settings)";
+  return "ThinTool, swept (default)";
 }
 
 const char* toolShapeName(ToolShape shape) {
@@ -86,7 +89,8 @@ struct SoftBallScene::Bullet {
 SoftBallScene::SoftBallScene(const SceneSettings& settings) : m_settings(settings), m_bullet(new Bullet) {
   Bullet& b = *m_bullet;
   const Variant variant = variantOf(settings.algorithm);
-  if (settings.algorithm == Algorithm::ThinTool) {
+  const bool thinTool = settings.algorithm == Algorithm::ThinTool || settings.algorithm == Algorithm::ThinToolPaper;
+  if (thinTool) {
     b.configuration = std::make_unique<thintool::CollisionConfiguration>();
   } else {
     b.configuration = std::make_unique<btSoftBodyRigidBodyCollisionConfiguration>();
@@ -132,8 +136,10 @@ SoftBallScene::SoftBallScene(const SceneSettings& settings) : m_settings(setting
   b.tool->setActivationState(DISABLE_DEACTIVATION);
   m_tool = b.tool.get();
   m_world->addRigidBody(m_tool);
-  if (settings.algorithm == Algorithm::ThinTool) {
-    m_thinTool = &thintool::addTool(*m_world, *m_tool, settings.toolOptions);
+  if (thinTool) {
+    thintool::ToolOptions options = settings.toolOptions;
+    options.swept = options.swept && settings.algorithm == Algorithm::ThinTool;
+    m_thinTool = &thintool::addTool(*m_world, *m_tool, options);
   }
 }
 

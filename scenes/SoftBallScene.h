@@ -28,7 +28,8 @@ enum class Algorithm {
   StockA,    ///< stock defaults: margin 0.25, kKHR 0.1, 1 position iteration, SDF voxel 0.25
   StockB,    ///< A tuned: kKHR 1, 10 position iterations
   StockE,    ///< B with a realistic skin: margin 0.05, SDF voxel 0.02
-  ThinTool,  ///< E's soft settings, the tool registered with ThinTool
+  ThinToolPaper,  ///< E's soft settings, the tool registered with ThinTool's discrete detection (the paper)
+  ThinTool,       ///< E's soft settings, the tool registered with ThinTool's defaults (swept detection)
 };
 const char* algorithmName(Algorithm algorithm);
 
@@ -46,7 +47,7 @@ struct SceneSettings {
   int ballResolution = 63;     ///< btSoftBodyHelpers::CreateEllipsoid's res: 63 gives 128 faces
   double settleSeconds = 2;
   int substeps = 1;  ///< internal steps per timeStep: stepSimulation(timeStep, substeps, timeStep / substeps)
-  thintool::ToolOptions toolOptions;  ///< used when algorithm is ThinTool
+  thintool::ToolOptions toolOptions;  ///< used when algorithm is ThinTool; ThinToolPaper sets swept = false
 };
 
 /// A world with ground, ball and tool, stepped by the caller. The tool is kinematic and follows

@@ -60,7 +60,8 @@ int main(int argc, char** argv) {
   std::printf("%s into a 128-face soft ball: stock Bullet 3.24 against ThinTool\n\n", toolShapeName(shape));
   std::printf("| algorithm | dt | speed (m/s) | crossed | cap crossed | tool inside | max pen. (m) | us/step | tool us/step |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|\n");
-  const Algorithm algorithms[] = {Algorithm::StockA, Algorithm::StockB, Algorithm::StockE, Algorithm::ThinTool};
+  const Algorithm algorithms[] = {Algorithm::StockA, Algorithm::StockB, Algorithm::StockE, Algorithm::ThinToolPaper,
+                                  Algorithm::ThinTool};
   for (Algorithm algorithm : algorithms) {
     for (double rate : rates) {
       for (double speed : speeds) {
@@ -75,7 +76,7 @@ int main(int argc, char** argv) {
         std::snprintf(cap, sizeof cap, "%d/%d%s", m.capCrossed, m.capNodes,
                       m.capNodes > 0 && m.capCrossed == m.capNodes ? " ALL" : "");
         char toolTime[32] = "-";
-        if (algorithm == Algorithm::ThinTool) {
+        if (algorithm == Algorithm::ThinTool || algorithm == Algorithm::ThinToolPaper) {
           std::snprintf(toolTime, sizeof toolTime, "%.1f", r.toolMicrosecondsPerStep);
         }
         std::printf("| %s | 1/%g | %g | %d | %s | %s | %.3f | %.1f | %s |\n", algorithmName(algorithm), rate, speed,

@@ -10,6 +10,7 @@
 #include <thintool/detection/SweptDetection.h>
 #include <thintool/response/Response.h>
 
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -34,6 +35,12 @@ struct PairState {
   /// Largest soft node displacement seen in the pair's last step (m): how far beyond the tool's
   /// swept box to look for soft faces that may cross it.
   Real softReach = 0;
+  /// Where swept detection left each soft node at the end of its last step (world), and the
+  /// step that was: the next sweep starts there rather than at Bullet's start of step, so that the
+  /// soft solver's own moves in between (links, pressure) are swept too.
+  std::vector<Vec3> lastPositions;
+  std::vector<std::uint32_t> lastStep;
+  std::uint32_t step = 1;
   SoftPatch patch;
   std::vector<Index> patchVertexOfNode;  ///< soft node -> patch vertex, kInvalidIndex when absent
   std::vector<const btDbvtNode*> traversalStack;
@@ -48,6 +55,7 @@ struct PairState {
   // Results of the latest step.
   std::vector<Contact> contacts;
   std::vector<NodeCorrection> corrections;
+  std::vector<NodeHold> holds;
   DetectionCounters counters;
   Wrench wrench;
   double detectionMicroseconds = 0;
@@ -59,6 +67,7 @@ struct PairState {
   void clearResults() {
     contacts.clear();
     corrections.clear();
+    holds.clear();
     counters = DetectionCounters{};
     wrench = Wrench{};
     detectionMicroseconds = 0;
@@ -73,6 +82,7 @@ struct PairState {
     clearResults();
     history.reset();
     sides.forget();
+    step += 2;  // what was recorded before is no longer the previous step
     hasPreviousPose = false;
     live = false;
   }

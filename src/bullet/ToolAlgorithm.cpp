@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <memory>
 
 namespace thintool::detail {
@@ -38,40 +39,41 @@ Aabb worldBounds(const Aabb& local, const Pose& pose) {
   return box;
 }
 
-// The solver contact that holds a moved node, built as Bullet's CollideSDF_RS builds its own.
-// PSolve_RContacts corrects x -= n·(dn + c4·dp) while dn <= 0, where dn is the node's motion this
-// step relative to the contact body's, (x - q - v_body·dt)·n. A body whose velocity is the node's
-// own projected motion makes dn = 0 where the projection left the node, and with c4 = 0 the
-// contact restores that position along n whenever the links or the pressure pull the node back
-// in, and never pulls it out further: a one-sided hold. The body has zero inverse mass, so the
-// solver's impulses on it go nowhere; the tool's reaction comes from the projection.
-btSoftBody::RContact holdContact(btSoftBody::Node& node, const Vec3& normal, btRigidBody& holdBody,
+// A contact of Bullet's soft solver that keeps a node on the positive side of a plane. PSolve_RContacts
+// corrects x -= n·(dn + c4·dp) while dn <= 0, dn being the node's motion this step relative to
+// the contact body's, (x - q - v_body·dt)·n. A body that moves the node onto the plane makes dn
+// the node's distance in front of the plane: the contact stays idle while the node is in front,
+// and with c4 = 0 puts it back on the plane when an iteration of the links or the pressure
+// pushes it through; it never pulls it out further. The body has zero inverse mass, so the
+// solver's impulses on it go nowhere (the tool's reaction comes from the projection), and it
+// never reads the tool's own velocity, which after a jump of the tool is meaningless.
+btSoftBody::RContact holdContact(btSoftBody::Node& node, const NodeHold& hold, btRigidBody& holdBody,
                                  btScalar timeStep) {
-  holdBody.setLinearVelocity((node.m_x - node.m_q) / timeStep);
+  const btVector3 normal = toBt(hold.normal);
+  const btScalar inFront = normal.dot(node.m_x) + btScalar(hold.offset);
+  const btVector3 onPlane = node.m_x - normal * btMax(inFront, btScalar(0));
+  holdBody.setLinearVelocity((onPlane - node.m_q) / timeStep);
   holdBody.setAngularVelocity(btVector3(0, 0, 0));
   btSoftBody::RContact contact;
   contact.m_cti.m_colObj = &holdBody;
-  contact.m_cti.m_normal = toBt(normal);
-  contact.m_cti.m_offset = -contact.m_cti.m_normal.dot(node.m_x);
+  contact.m_cti.m_normal = normal;
+  contact.m_cti.m_offset = btScalar(hold.offset);
   contact.m_node = &node;
   static const btMatrix3x3 zero(0, 0, 0, 0, 0, 0, 0, 0, 0);
   contact.m_c0 = ImpulseMatrix(timeStep, node.m_im, 0, zero, btVector3(0, 0, 0));
   contact.m_c1 = btVector3(0, 0, 0);
   contact.m_c2 = node.m_im * timeStep;
   contact.m_c3 = 1;  // frictionless: the tangential motion is left alone
-  contact.m_c4 = 0;  // no positional term: the projection already placed the node
+  contact.m_c4 = 0;  // no positional term: the hold body already aims at the plane
   return contact;
 }
 
 // Writes the corrections into the soft body: the moves, the solver's holds, and for a dynamic tool
 // the reaction. A correction that is not finite is counted and never written.
-void applyResponse(PairState& state, btSoftBody& softBody, const btCollisionObject& toolObject,
-                   const ResponseSettings& settings, btScalar timeStep) {
+void applyResponse(PairState& state, btSoftBody& softBody, const btCollisionObject& toolObject, btScalar timeStep) {
   const btRigidBody* rigidBody = btRigidBody::upcast(&toolObject);
   btRigidBody* dynamicBody =
       rigidBody != nullptr && !rigidBody->isStaticOrKinematicObject() ? const_cast<btRigidBody*>(rigidBody) : nullptr;
-  const bool holdInSolver = settings.kind == ResponseKind::Constraint && settings.holdInSolver;
-  Index holdsUsed = 0;
   for (const NodeCorrection& correction : state.corrections) {
     if (!isFinite(correction.displacement) || !isFinite(correction.normal)) {
       ++state.rejectedCorrections;
@@ -80,13 +82,6 @@ void applyResponse(PairState& state, btSoftBody& softBody, const btCollisionObje
     btSoftBody::Node& node = softBody.m_nodes[static_cast<int>(state.patch.nodeIds[correction.vertex])];
     const btVector3 displacement = toBt(correction.displacement);
     node.m_x += displacement;
-    if (holdInSolver) {
-      if (holdsUsed == state.holdBodies.size()) {
-        state.holdBodies.push_back(
-            std::make_unique<btRigidBody>(btRigidBody::btRigidBodyConstructionInfo(0, nullptr, nullptr)));
-      }
-      softBody.m_rcontacts.push_back(holdContact(node, correction.normal, *state.holdBodies[holdsUsed++], timeStep));
-    }
     if (dynamicBody != nullptr) {
       // The node's change of momentum, taken from the tool.
       dynamicBody->applyImpulse(displacement * (-1 / (node.m_im * timeStep)),
@@ -95,6 +90,18 @@ void applyResponse(PairState& state, btSoftBody& softBody, const btCollisionObje
   }
   if (dynamicBody != nullptr && !state.corrections.empty()) {
     dynamicBody->activate();
+  }
+  Index holdsUsed = 0;
+  for (const NodeHold& hold : state.holds) {
+    if (!isFinite(hold.normal) || !std::isfinite(hold.offset)) {
+      continue;
+    }
+    if (holdsUsed == state.holdBodies.size()) {
+      state.holdBodies.push_back(
+          std::make_unique<btRigidBody>(btRigidBody::btRigidBodyConstructionInfo(0, nullptr, nullptr)));
+    }
+    btSoftBody::Node& node = softBody.m_nodes[static_cast<int>(state.patch.nodeIds[hold.vertex])];
+    softBody.m_rcontacts.push_back(holdContact(node, hold, *state.holdBodies[holdsUsed++], timeStep));
   }
 }
 
@@ -180,6 +187,8 @@ void ToolAlgorithm::processPiece(PairState& state, btSoftBody& softBody, const b
     state.corrections.reserve(softBody.m_nodes.size());
     state.traversalStack.reserve(256);
     state.sides.resize(static_cast<Index>(softBody.m_nodes.size()), static_cast<Index>(softBody.m_faces.size()));
+    state.lastPositions.resize(softBody.m_nodes.size());
+    state.lastStep.assign(softBody.m_nodes.size(), 0);
   }
 
   const Real skin = options.skin >= 0 ? options.skin : Real(softBody.getCollisionShape()->getMargin());
@@ -192,12 +201,16 @@ void ToolAlgorithm::processPiece(PairState& state, btSoftBody& softBody, const b
   gatherPatch(softBody, reach.expanded(skin), state);
 
   if (swept) {
+    ++state.step;
+    SoftPatch& patch = state.patch;
+    patch.checkedPositions.resize(patch.vertexCount());
+    for (Index v = 0; v < patch.vertexCount(); ++v) {
+      const Index id = patch.nodeIds[v];
+      patch.checkedPositions[v] =
+          state.lastStep[id] + 1 == state.step ? state.lastPositions[id] : patch.previousPositions[v];
+    }
     detectSwept(model, previousPose, pose, state.patch, skin, state.sides, m_tool.m_sweptWorkspace, state.contacts,
                 state.counters);
-    state.softReach = 0;
-    for (Index v = 0; v < state.patch.vertexCount(); ++v) {
-      state.softReach = std::max(state.softReach, length(state.patch.positions[v] - state.patch.previousPositions[v]));
-    }
   } else {
     DetectionParameters parameters;
     parameters.skin = skin;
@@ -218,7 +231,29 @@ void ToolAlgorithm::processPiece(PairState& state, btSoftBody& softBody, const b
                   m_tool.m_responseWorkspace, state.corrections, state.wrench);
   state.previousPose = pose;
   state.hasPreviousPose = true;
-  applyResponse(state, softBody, toolBody, options.response, timeStep);
+  if (swept) {
+    // How far the soft nodes near the tool move in a step, the response's pushes included (they
+    // become next step's velocity): next step looks that much beyond the tool's swept box.
+    state.softReach = 0;
+    const SoftPatch& patch = state.patch;
+    for (Index v = 0; v < patch.vertexCount(); ++v) {
+      state.softReach = std::max(state.softReach, length(patch.positions[v] - patch.previousPositions[v]));
+    }
+    for (Index v = 0; v < patch.vertexCount(); ++v) {
+      state.lastPositions[patch.nodeIds[v]] = patch.positions[v];
+      state.lastStep[patch.nodeIds[v]] = state.step;
+    }
+    for (const NodeCorrection& correction : state.corrections) {
+      const Index v = correction.vertex;
+      state.softReach = std::max(
+          state.softReach, length(patch.positions[v] + correction.displacement - patch.previousPositions[v]));
+      state.lastPositions[patch.nodeIds[v]] = patch.positions[v] + correction.displacement;
+    }
+  }
+  if (options.response.kind == ResponseKind::Constraint && options.response.holdInSolver) {
+    computeHolds(model, pose, state.patch, skin, state.corrections, swept, m_tool.m_responseWorkspace, state.holds);
+  }
+  applyResponse(state, softBody, toolBody, timeStep);
   releasePatch(state);
   const auto responded = Clock::now();
   state.detectionMicroseconds = microsecondsBetween(start, detected);

@@ -78,15 +78,22 @@ struct Sweep {
     out.push_back(contact);
   }
 
-  // A soft node's segment against the tool grown by the skin.
-  void softNode(Index v) {
+  // A soft node's segment against the tool grown by the skin; and, before it, the soft solver's
+  // move of the node since detection last left it, made while the tool stood at previousPose.
+  void softNode(Index v, const Vec3* checked) {
+    Index solverEntry = kInvalidIndex;
+    if (checked != nullptr) {
+      const ClipResult during = clipSegmentConvex(model.planes, skin, *checked, start[v]);
+      solverEntry = during.hit ? during.enterPlane : kInvalidIndex;
+    }
     const ClipResult clip = clipSegmentConvex(model.planes, skin, start[v], end[v]);
-    if (!clip.hit) {
+    if (!clip.hit && solverEntry == kInvalidIndex) {
       return;
     }
     ++counters.candidates;
     const Index id = patch.nodeIds[v];
-    Index plane = clip.enterPlane;
+    // The solver pushed it in (or through): it goes back the way it came, wherever it is now.
+    Index plane = solverEntry != kInvalidIndex ? solverEntry : clip.enterPlane;
     if (plane == kInvalidIndex) {
       plane = memory.nodeSide(id);
     }
@@ -248,10 +255,19 @@ void detectSwept(const ToolModel& model, const Pose& previousPose, const Pose& p
 
   // Soft nodes against the solid.
   const Aabb grownTool = model.bounds.expanded(skin);
+  const bool haveChecked = patch.checkedPositions.size() == vertexCount;
   for (Index v = 0; v < vertexCount; ++v) {
-    if (work.m_valid[v] && patch.inverseMasses[v] > 0 &&
-        Aabb::fromPoints(work.m_start[v], work.m_end[v]).overlaps(grownTool)) {
-      sweep.softNode(v);
+    if (!work.m_valid[v] || !(patch.inverseMasses[v] > 0)) {
+      continue;
+    }
+    Aabb path = Aabb::fromPoints(work.m_start[v], work.m_end[v]);
+    Vec3 checked;
+    if (haveChecked && isFinite(patch.checkedPositions[v])) {
+      checked = previousPose.applyInverse(patch.checkedPositions[v]);
+      path.include(checked);
+    }
+    if (path.overlaps(grownTool)) {
+      sweep.softNode(v, haveChecked ? &checked : nullptr);
     }
   }
 

@@ -184,4 +184,56 @@ void computeResponse(const ToolModel& model, const Pose& toolPose, const Pose& p
   }
 }
 
+void computeHolds(const ToolModel& model, const Pose& toolPose, const SoftPatch& patch, Real skin,
+                  const std::vector<NodeCorrection>& corrections, bool holdUnmoved, ResponseWorkspace& work,
+                  std::vector<NodeHold>& outHolds) {
+  outHolds.clear();
+  if (work.m_moved.size() < patch.vertexCount()) {
+    work.m_moved.resize(patch.vertexCount(), 0);
+  }
+  for (const NodeCorrection& correction : corrections) {
+    const Vec3 at = patch.positions[correction.vertex] + correction.displacement;
+    outHolds.push_back({correction.vertex, correction.normal, -dot(correction.normal, at)});
+  }
+  if (!holdUnmoved) {
+    return;
+  }
+  for (const NodeCorrection& correction : corrections) {
+    work.m_moved[correction.vertex] = 1;
+  }
+  // A projection this far off a face (relative to the tool's size) still counts as on it.
+  const Real tolerance = 1e-9 * length(model.bounds.extent());
+  for (Index vertex = 0; vertex < patch.vertexCount(); ++vertex) {
+    if (work.m_moved[vertex] || !(patch.inverseMasses[vertex] > 0)) {
+      continue;
+    }
+    const Vec3 local = toolPose.applyInverse(patch.positions[vertex]);
+    Index front = kInvalidIndex;
+    Real distance = -std::numeric_limits<Real>::max();
+    for (Index p = 0; p < model.planes.size(); ++p) {
+      const Real d = model.planes[p].signedDistance(local) - skin;
+      if (d > distance) {
+        distance = d;
+        front = p;
+      }
+    }
+    if (front == kInvalidIndex || distance < 0) {
+      continue;  // inside the grown tool, unmoved: its faces' contacts speak for it
+    }
+    const Plane& face = model.planes[front];
+    const Vec3 onPlane = local - face.normal * distance;
+    bool onFace = true;
+    for (Index p = 0; p < model.planes.size() && onFace; ++p) {
+      onFace = p == front || model.planes[p].signedDistance(onPlane) <= skin + tolerance;
+    }
+    if (onFace) {
+      const Vec3 normal = toolPose.applyToDirection(face.normal);
+      outHolds.push_back({vertex, normal, -dot(normal, toolPose.apply(face.normal * (face.offset + skin)))});
+    }
+  }
+  for (const NodeCorrection& correction : corrections) {
+    work.m_moved[correction.vertex] = 0;
+  }
+}
+
 }  // namespace thintool

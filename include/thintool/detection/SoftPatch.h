@@ -17,6 +17,9 @@ namespace thintool {
 struct SoftPatch {
   std::vector<Vec3> positions;          ///< world, end of step as predicted by the soft solver
   std::vector<Vec3> previousPositions;  ///< world, start of step
+  /// World: where swept detection left each node at the end of its previous step, before the
+  /// soft solver moved it to previousPositions; empty, or equal to previousPositions, when unknown.
+  std::vector<Vec3> checkedPositions;
   std::vector<Real> inverseMasses;
   std::vector<Index> nodeIds;
   std::vector<std::array<Index, 3>> faces;  ///< local vertex indices
@@ -29,6 +32,7 @@ struct SoftPatch {
   void clear() {
     positions.clear();
     previousPositions.clear();
+    checkedPositions.clear();
     inverseMasses.clear();
     nodeIds.clear();
     faces.clear();

@@ -61,6 +61,14 @@ struct NodeCorrection {
   Vec3 normal;                   ///< world, unit, out of the tool: the direction the node must not go back along
 };
 
+/// A plane a soft node must not cross during the soft solver's iterations: dot(normal, x) + offset
+/// >= 0 (world). The glue turns each into a one-sided contact of Bullet's solver.
+struct NodeHold {
+  Index vertex = kInvalidIndex;  ///< index in SoftPatch::positions
+  Vec3 normal;
+  Real offset = 0;
+};
+
 /// Net force on the tool (N) and torque about the tool's origin (N·m) from this step's response.
 struct Wrench {
   Vec3 force;
@@ -69,6 +77,8 @@ struct Wrench {
 
 class ResponseWorkspace {
  private:
+  friend void computeHolds(const ToolModel&, const Pose&, const SoftPatch&, Real, const std::vector<NodeCorrection>&,
+                           bool, ResponseWorkspace&, std::vector<NodeHold>&);
   friend void computeResponse(const ToolModel&, const Pose&, const Pose&, const SoftPatch&,
                               const std::vector<Contact>&, Real, Real, const ResponseSettings&, ResponseWorkspace&,
                               std::vector<NodeCorrection>&, Wrench&);
@@ -76,6 +86,7 @@ class ResponseWorkspace {
   std::vector<Index> m_slot;          ///< per patch vertex: its entry in the output, or kInvalidIndex
   std::vector<Real> m_largestShare;   ///< per output entry: the largest single move, whose normal it keeps
   std::vector<Real> m_entryDepth;     ///< per output entry: how far inside the tool the node was
+  std::vector<std::uint8_t> m_moved;  ///< per patch vertex, within computeHolds: it has a correction
 };
 
 /// Turns contacts into node corrections and the wrench on the tool, for a step of dt seconds with
@@ -86,5 +97,17 @@ void computeResponse(const ToolModel& model, const Pose& toolPose, const Pose& p
                      const SoftPatch& patch, const std::vector<Contact>& contacts, Real skin, Real dt,
                      const ResponseSettings& settings, ResponseWorkspace& workspace,
                      std::vector<NodeCorrection>& outCorrections, Wrench& outWrench);
+
+/// The planes that keep the soft solver from undoing the response, or from dragging a node through
+/// the tool while it repairs a deformed body: each moved node keeps the plane it was moved onto
+/// (along its correction's normal, through where it now is). With holdUnmoved, each other movable
+/// node of the patch that lies in front of a face of the tool (its projection onto the face's
+/// plane, grown by the skin, falls on the face) keeps that face's plane; a node beside a rim has
+/// no plane and may wrap around it. Ask for it only where every node is known to be on its own
+/// side of the tool, as after swept detection: a node that slipped through unseen would be held
+/// on the wrong side.
+void computeHolds(const ToolModel& model, const Pose& toolPose, const SoftPatch& patch, Real skin,
+                  const std::vector<NodeCorrection>& corrections, bool holdUnmoved, ResponseWorkspace& workspace,
+                  std::vector<NodeHold>& outHolds);
 
 }  // namespace thintool
