@@ -91,6 +91,10 @@ void CrossingTracker::update(const ToolBox& tool, const std::vector<Point>& node
     }
     m_previousLocal[i] = now;
   }
+  m_metrics.stillCrossed = 0;
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    m_metrics.stillCrossed += m_crossed[i] && m_previousLocal[i].y > 0 && inFootprint(tool, m_previousLocal[i]);
+  }
   m_metrics.endsInside = insideClosedSurface(tool.origin, nodes, faces);
   m_metrics.everInside = m_metrics.everInside || m_metrics.endsInside;
 }

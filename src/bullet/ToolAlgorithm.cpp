@@ -68,6 +68,22 @@ btSoftBody::RContact holdContact(btSoftBody::Node& node, const NodeHold& hold, b
   return contact;
 }
 
+// Appends a contact pass after the last link pass of the soft body's position solver, once.
+void makeContactsLast(btSoftBody& softBody) {
+  auto& sequence = softBody.m_cfg.m_psequence;
+  bool linksSeen = false;
+  for (int k = 0; k < sequence.size(); ++k) {
+    if (sequence[k] == btSoftBody::ePSolver::Linear) {
+      linksSeen = true;
+    } else if (sequence[k] == btSoftBody::ePSolver::RContacts) {
+      linksSeen = false;  // a contact pass already follows every link pass so far
+    }
+  }
+  if (linksSeen) {
+    sequence.push_back(btSoftBody::ePSolver::RContacts);
+  }
+}
+
 // Writes the corrections into the soft body: the moves, the solver's holds, and for a dynamic tool
 // the reaction. A correction that is not finite is counted and never written.
 void applyResponse(PairState& state, btSoftBody& softBody, const btCollisionObject& toolObject, btScalar timeStep) {
@@ -252,6 +268,9 @@ void ToolAlgorithm::processPiece(PairState& state, btSoftBody& softBody, const b
   }
   if (options.response.kind == ResponseKind::Constraint && options.response.holdInSolver) {
     computeHolds(model, pose, state.patch, skin, state.corrections, swept, m_tool.m_responseWorkspace, state.holds);
+    if (options.response.contactsLast) {
+      makeContactsLast(softBody);
+    }
   }
   applyResponse(state, softBody, toolBody, timeStep);
   releasePatch(state);

@@ -137,9 +137,14 @@ struct Sweep {
   void toolPoint(Index point, const FaceMotion& face) {
     ++counters.triangleTests;
     const Vec3& p = model.points[point];
+    // Within the skin, a face that touched the tool last step keeps the side it was on: if the
+    // soft solver left it slightly pierced, the geometry shows the wrong side. Farther out the
+    // geometry decides, so that a face wrapping around a rim over several steps can turn.
     const Real startDistance = dot(face.n0, p - *face.a0);
-    const int side =
-        std::abs(startDistance) > onSurface ? signOf(startDistance) : memory.faceSide(patch.faceIds[face.face]);
+    int side = std::abs(startDistance) < skin ? memory.faceSide(patch.faceIds[face.face]) : 0;
+    if (side == 0 && std::abs(startDistance) > onSurface) {
+      side = signOf(startDistance);
+    }
     if (side == 0) {
       return;
     }

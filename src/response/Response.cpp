@@ -201,8 +201,6 @@ void computeHolds(const ToolModel& model, const Pose& toolPose, const SoftPatch&
   for (const NodeCorrection& correction : corrections) {
     work.m_moved[correction.vertex] = 1;
   }
-  // A projection this far off a face (relative to the tool's size) still counts as on it.
-  const Real tolerance = 1e-9 * length(model.bounds.extent());
   for (Index vertex = 0; vertex < patch.vertexCount(); ++vertex) {
     if (work.m_moved[vertex] || !(patch.inverseMasses[vertex] > 0)) {
       continue;
@@ -220,16 +218,12 @@ void computeHolds(const ToolModel& model, const Pose& toolPose, const SoftPatch&
     if (front == kInvalidIndex || distance < 0) {
       continue;  // inside the grown tool, unmoved: its faces' contacts speak for it
     }
+    // The face it is farthest in front of separates it from the tool: held behind that plane it
+    // cannot enter the tool during the solve, and the plane is chosen anew every step, so a node
+    // beside a rim can still wrap around it over several steps.
     const Plane& face = model.planes[front];
-    const Vec3 onPlane = local - face.normal * distance;
-    bool onFace = true;
-    for (Index p = 0; p < model.planes.size() && onFace; ++p) {
-      onFace = p == front || model.planes[p].signedDistance(onPlane) <= skin + tolerance;
-    }
-    if (onFace) {
-      const Vec3 normal = toolPose.applyToDirection(face.normal);
-      outHolds.push_back({vertex, normal, -dot(normal, toolPose.apply(face.normal * (face.offset + skin)))});
-    }
+    const Vec3 normal = toolPose.applyToDirection(face.normal);
+    outHolds.push_back({vertex, normal, -dot(normal, toolPose.apply(face.normal * (face.offset + skin)))});
   }
   for (const NodeCorrection& correction : corrections) {
     work.m_moved[correction.vertex] = 0;

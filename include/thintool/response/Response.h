@@ -47,11 +47,18 @@ struct ResponseSettings {
   Real stiffness = 1000;
   /// Constraint: the node guard (pass 2). Off, only nodes of faces the rays hit are moved.
   bool guardNodes = true;
-  /// Constraint: give Bullet's soft solver one contact (btSoftBody::RContact) per moved node that
-  /// holds it where the projection put it along the contact normal, one-sided, through the
-  /// solver's position iterations. Without it the links and the pressure of a squashed body pull
-  /// the nodes back into the tool within the same step.
+  /// Constraint: give Bullet's soft solver one-sided plane contacts (btSoftBody::RContact) that
+  /// hold the moved nodes where the projection put them and, with swept detection, every other
+  /// node near the tool behind the tool face it is in front of (see computeHolds). Without them the
+  /// links and the pressure of a squashed body pull nodes back into the tool within the step.
   bool holdInSolver = true;
+  /// With holdInSolver: make contacts, not links, the last word of each of the soft solver's
+  /// position iterations, by appending a contact pass (ePSolver::RContacts) to the position
+  /// sequence (btSoftBody::m_cfg.m_psequence) of each soft body the tool touches, once. Bullet
+  /// runs contacts before links, so a link pulled hard by a large deformation can drag a held node
+  /// through the tool in the last iteration. The pass also re-solves that soft body's other
+  /// contacts (with the ground, say) once more per iteration; switch it off to keep Bullet's order.
+  bool contactsLast = true;
 };
 
 /// A soft node's move, and the direction it was moved out along.
@@ -101,9 +108,9 @@ void computeResponse(const ToolModel& model, const Pose& toolPose, const Pose& p
 /// The planes that keep the soft solver from undoing the response, or from dragging a node through
 /// the tool while it repairs a deformed body: each moved node keeps the plane it was moved onto
 /// (along its correction's normal, through where it now is). With holdUnmoved, each other movable
-/// node of the patch that lies in front of a face of the tool (its projection onto the face's
-/// plane, grown by the skin, falls on the face) keeps that face's plane; a node beside a rim has
-/// no plane and may wrap around it. Ask for it only where every node is known to be on its own
+/// node of the patch keeps the plane of the tool face it is farthest in front of (grown by the
+/// skin), which separates it from the tool; chosen anew each step, it still lets a node wrap
+/// around a rim over several steps. Ask for it only where every node is known to be on its own
 /// side of the tool, as after swept detection: a node that slipped through unseen would be held
 /// on the wrong side.
 void computeHolds(const ToolModel& model, const Pose& toolPose, const SoftPatch& patch, Real skin,
