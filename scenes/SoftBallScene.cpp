@@ -288,4 +288,16 @@ PressResult runPress(const PressSettings& settings) {
   return result;
 }
 
+RunMetrics runTrajectory(SoftBallScene& scene, int steps, const std::function<btTransform(int)>& poseAt) {
+  scene.step(poseAt(0));
+  const std::vector<std::array<int, 3>> faces = faceIndices(scene.ball());
+  CrossingTracker tracker;
+  tracker.start(scene.toolBox(), nodePositions(scene.ball()), scene.ballMeanHeight());
+  for (int i = 1; i <= steps; ++i) {
+    scene.step(poseAt(i));
+    tracker.update(scene.toolBox(), nodePositions(scene.ball()), faces);
+  }
+  return tracker.metrics();
+}
+
 }  // namespace thintool::scenes

@@ -13,6 +13,7 @@
 
 #include <LinearMath/btTransform.h>
 
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -110,5 +111,9 @@ struct PressResult {
 };
 
 PressResult runPress(const PressSettings& settings);
+
+/// Drives the tool of a settled scene through poseAt(step) for steps steps, tracking the ball's
+/// nodes against the tool; the tracker starts at pose 0.
+RunMetrics runTrajectory(SoftBallScene& scene, int steps, const std::function<btTransform(int)>& poseAt);
 
 }  // namespace thintool::scenes
