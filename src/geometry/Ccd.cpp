@@ -95,6 +95,24 @@ int rootsInUnitInterval(const Real (&c)[4], Real tolerance, Real (&outRoots)[5])
 
 Real determinant(const Vec3& a, const Vec3& b, const Vec3& c) { return dot(a, cross(b, c)); }
 
+// Calls meetsAt(t) at the coplanarity polynomial's roots in [0, 1], earliest first, until it
+// returns true. Coplanar all step (the polynomial vanishes), the features can only meet within
+// their common plane, and the motion is sampled instead.
+template <class MeetsAt>
+void firstMeeting(const Real (&c)[4], Real coplanarTolerance, MeetsAt& meetsAt) {
+  if (std::abs(c[0]) + std::abs(c[1]) + std::abs(c[2]) + std::abs(c[3]) <= coplanarTolerance) {
+    for (int k = 0; k <= kCoplanarMotionSamples; ++k) {
+      if (meetsAt(Real(k) / kCoplanarMotionSamples)) return;
+    }
+    return;
+  }
+  Real roots[5];
+  const int count = rootsInUnitInterval(c, coplanarTolerance, roots);
+  for (int k = 0; k < count; ++k) {
+    if (meetsAt(roots[k])) return;
+  }
+}
+
 }  // namespace
 
 ClipResult clipSegmentConvex(const std::vector<Plane>& planes, Real grow, const Vec3& a, const Vec3& b) {
@@ -221,18 +239,7 @@ PointTriangleCcd pointTriangleCcd(const Vec3& p, const Vec3& a0, const Vec3& b0,
     return true;
   };
 
-  if (std::abs(c[0]) + std::abs(c[1]) + std::abs(c[2]) + std::abs(c[3]) <= coplanarTolerance) {
-    // Coplanar all step: the point can only be met within the plane; sample the motion.
-    for (int k = 0; k <= kCoplanarMotionSamples; ++k) {
-      if (meetsAt(Real(k) / kCoplanarMotionSamples)) return result;
-    }
-    return result;
-  }
-  Real roots[5];
-  const int count = rootsInUnitInterval(c, coplanarTolerance, roots);
-  for (int k = 0; k < count; ++k) {
-    if (meetsAt(roots[k])) return result;
-  }
+  firstMeeting(c, coplanarTolerance, meetsAt);
   return result;
 }
 
@@ -265,17 +272,7 @@ EdgeEdgeCcd edgeEdgeCcd(const Vec3& p0, const Vec3& p1, const Vec3& e0a, const V
     return true;
   };
 
-  if (std::abs(c[0]) + std::abs(c[1]) + std::abs(c[2]) <= coplanarTolerance) {
-    for (int k = 0; k <= kCoplanarMotionSamples; ++k) {
-      if (meetsAt(Real(k) / kCoplanarMotionSamples)) return result;
-    }
-    return result;
-  }
-  Real roots[5];
-  const int count = rootsInUnitInterval(c, coplanarTolerance, roots);
-  for (int k = 0; k < count; ++k) {
-    if (meetsAt(roots[k])) return result;
-  }
+  firstMeeting(c, coplanarTolerance, meetsAt);
   return result;
 }
 
