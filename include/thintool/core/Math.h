@@ -17,6 +17,8 @@ namespace thintool {
 
 using Real = double;
 
+inline constexpr Real kPi = 3.14159265358979323846;
+
 struct Vec3 {
   Real x = 0;
   Real y = 0;

@@ -1,0 +1,137 @@
+// SPDX-License-Identifier: Zlib
+// Copyright (c) 2026 The ThinTool developers
+#pragma once
+
+/// @file
+/// The force the soft tissue puts on a tool, for haptic feedback and for a dynamic tool's reaction.
+///
+/// Source: the paper's eq. (3), Hunt & Crossley (1975), F = k·xⁿ + λ·xⁿ·ẋ for x >= 0, else 0,
+/// summed over the soft faces in contact; a face is in contact when one of its nodes collides
+/// (the paper, §III.D). Two measures of the deformation x of a face are offered:
+/// - DeformationMeasure::CentroidDisplacement, the paper's: the distance of the face's centroid
+///   from where it was at rest. It counts the body's own rigid motion (a ball rolling away from
+///   its rest pose) as deformation.
+/// - DeformationMeasure::Indentation (default): how far the face's centroid has been pushed in
+///   along the contact normal, measured from its rest position carried along by the body's rigid
+///   motion. The rigid motion is estimated by shape matching (Müller et al., "Meshless
+///   deformations based on shape matching", 2005) over a fixed set of nodes spread over the body,
+///   its rotation extracted as in Müller et al., "A robust method to extract the rotational part
+///   of deformations" (2016).
+/// Deviations, each against a pitfall of the model: the force is clamped at 0, so a fast
+/// withdrawal (ẋ < −k/λ) never pulls the tool back into the tissue; ẋ is the deformation's own
+/// rate, low-pass filtered at ForceSettings::rateCutoff, and the damping term uses the same xⁿ as
+/// the spring, so the force is 0 at first touch whatever the speed. The force does not act on
+/// the soft body: the response (response/Response.h) already puts the nodes where the tool
+/// allows, and a second tissue spring on top would count the tissue twice.
+
+#include <thintool/core/Math.h>
+#include <thintool/detection/Detection.h>
+#include <thintool/detection/SoftPatch.h>
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+namespace thintool {
+
+enum class DeformationMeasure : std::uint8_t { CentroidDisplacement, Indentation };
+
+/// F = k·xⁿ + λ·xⁿ·ẋ, clamped at 0.
+struct HuntCrossley {
+  Real stiffness = 100;  ///< k (N/mⁿ, >= 0)
+  Real damping = 50;     ///< λ (N·s/mⁿ⁺¹, >= 0); λ/k is the model's c (s/m)
+  Real exponent = 1.5;   ///< n (> 0): 1 for a flat face pressing, 3/2 for a rounded tip (Hertz)
+};
+
+/// The force of one face for a deformation x (m) and its rate ẋ (m/s): a replacement for the
+/// Hunt–Crossley law. A negative or non-finite result counts as 0.
+using ForceLaw = std::function<Real(Real deformation, Real rate)>;
+
+struct ForceSettings {
+  /// Off, no force is computed, reported or applied (a dynamic tool then receives the response's
+  /// reaction, see ResponseSettings).
+  bool enabled = false;
+  DeformationMeasure measure = DeformationMeasure::Indentation;
+  HuntCrossley huntCrossley;
+  /// Replaces huntCrossley when set.
+  ForceLaw law;
+  /// Cut-off frequency (Hz, > 0) of the first-order low-pass filter on ẋ; 0 leaves ẋ unfiltered.
+  Real rateCutoff = 30;
+  /// The point the reported torque is taken about, in the tool body's frame (m): the grip, say.
+  Vec3 torquePoint;
+  /// A dynamic tool receives the force as its reaction, in place of the response's.
+  bool applyToDynamicTool = true;
+};
+
+/// Hunt–Crossley's law, clamped at 0; 0 for x <= 0 and for non-finite input.
+Real huntCrossleyForce(const HuntCrossley& model, Real deformation, Real rate);
+
+/// The force of one soft face in contact, on the tool.
+struct FaceForce {
+  Index softFace = kInvalidIndex;  ///< in the soft body
+  Vec3 point;                      ///< world: the face's centroid
+  Vec3 force;                      ///< world (N), on the tool
+  Real deformation = 0;            ///< x (m)
+  Real rate = 0;                   ///< filtered ẋ (m/s)
+};
+
+/// A soft body's rest shape, and the nodes its rigid motion is estimated from.
+class RestShape {
+ public:
+  /// Records positions (world) as the rest shape; up to anchorCount nodes spread over the body
+  /// (by index stride) carry the rigid-motion estimate. inverseMasses weigh it; pinned nodes
+  /// (inverse mass 0) weigh as the heaviest movable node.
+  void capture(const std::vector<Vec3>& positions, const std::vector<Real>& inverseMasses, Index anchorCount = 256);
+  bool empty() const { return m_positions.empty(); }
+  Index nodeCount() const { return static_cast<Index>(m_positions.size()); }
+  const Vec3& position(Index node) const { return m_positions[node]; }
+  const std::vector<Index>& anchors() const { return m_anchors; }
+  const std::vector<Real>& anchorWeights() const { return m_anchorWeights; }
+  const Vec3& anchorCentroid() const { return m_anchorCentroid; }
+
+ private:
+  std::vector<Vec3> m_positions;
+  std::vector<Index> m_anchors;
+  std::vector<Real> m_anchorWeights;
+  Vec3 m_anchorCentroid;
+};
+
+/// The rigid motion that best carries the rest anchors to their current positions (a least-squares
+/// fit in the weights): current ≈ rotation·(rest − restCentroid) + centroid.
+struct RigidFit {
+  Mat3 rotation;  // identity
+  Vec3 restCentroid;
+  Vec3 centroid;
+  Vec3 apply(const Vec3& rest) const { return rotation * (rest - restCentroid) + centroid; }
+};
+
+/// Fits the rigid motion from the anchors' current positions (anchorPositions[i] is where node
+/// rest.anchors()[i] is now). previous seeds the rotation's iteration (the last step's fit).
+RigidFit fitRigidMotion(const RestShape& rest, const std::vector<Vec3>& anchorPositions, const RigidFit& previous);
+
+/// What the force model keeps per (tool piece, soft body) from one step to the next: each face's
+/// last deformation and filtered rate, for ẋ.
+class ForceHistory {
+ public:
+  void resize(Index faceCount);
+  void reset();
+
+ private:
+  friend void computeContactForces(const SoftPatch&, const std::vector<Contact>&, const RestShape&, const RigidFit&,
+                                   const ForceSettings&, Real, ForceHistory&, std::vector<FaceForce>&);
+  std::vector<Real> m_lastDeformation;
+  std::vector<Real> m_rate;
+  std::vector<std::uint32_t> m_lastStep;
+  std::vector<Vec3> m_vertexNormal;  ///< per patch vertex, scratch: sum of its contacts' normals
+  std::uint32_t m_step = 1;
+};
+
+/// The forces of this step's soft faces in contact, on the tool, for a step of dt seconds.
+/// patch.positions must hold where the response left the nodes; contacts' patchVertices index
+/// into patch. rigidFit is ignored by the centroid measure. Allocates nothing once the history
+/// and outForces have grown to the soft body.
+void computeContactForces(const SoftPatch& patch, const std::vector<Contact>& contacts, const RestShape& rest,
+                          const RigidFit& rigidFit, const ForceSettings& settings, Real dt, ForceHistory& history,
+                          std::vector<FaceForce>& outForces);
+
+}  // namespace thintool
