@@ -8,6 +8,7 @@
 
 #include <thintool/detection/Detection.h>
 #include <thintool/detection/SweptDetection.h>
+#include <thintool/force/ContactForce.h>
 #include <thintool/response/Response.h>
 
 #include <cstdint>
@@ -49,6 +50,10 @@ struct PairState {
   /// The piece's pose when the pair was last processed: the start of this step.
   Pose previousPose;
   bool hasPreviousPose = false;
+  /// The force model's memory: each face's deformation rate, and the soft body's rigid motion.
+  ForceHistory forceHistory;
+  RigidFit rigidFit;
+  std::vector<Vec3> anchorPositions;
   /// Bodies that the solver contacts holding moved nodes refer to, one per node (see ToolAlgorithm).
   std::vector<std::unique_ptr<btRigidBody>> holdBodies;
 
@@ -58,6 +63,7 @@ struct PairState {
   std::vector<NodeHold> holds;
   DetectionCounters counters;
   Wrench wrench;
+  std::vector<FaceForce> faceForces;
   double detectionMicroseconds = 0;
   double responseMicroseconds = 0;
   Index rejectedCorrections = 0;
@@ -68,6 +74,7 @@ struct PairState {
     contacts.clear();
     corrections.clear();
     holds.clear();
+    faceForces.clear();
     counters = DetectionCounters{};
     wrench = Wrench{};
     detectionMicroseconds = 0;
@@ -82,6 +89,7 @@ struct PairState {
     clearResults();
     history.reset();
     sides.forget();
+    forceHistory.reset();
     step += 2;  // what was recorded before is no longer the previous step
     hasPreviousPose = false;
     live = false;

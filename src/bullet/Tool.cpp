@@ -73,12 +73,58 @@ detail::PairState& Tool::pairState(btSoftBody& softBody, Index piece) {
   return state;
 }
 
+namespace {
+
+void captureInto(RestShape& shape, const btSoftBody& softBody) {
+  std::vector<Vec3> positions;
+  std::vector<Real> inverseMasses;
+  positions.reserve(static_cast<std::size_t>(softBody.m_nodes.size()));
+  inverseMasses.reserve(static_cast<std::size_t>(softBody.m_nodes.size()));
+  for (int i = 0; i < softBody.m_nodes.size(); ++i) {
+    positions.push_back(toVec3(softBody.m_nodes[i].m_x));
+    inverseMasses.push_back(Real(softBody.m_nodes[i].m_im));
+  }
+  shape.capture(positions, inverseMasses);
+}
+
+}  // namespace
+
+const RestShape& Tool::restShape(const btSoftBody& softBody) {
+  for (auto& rest : m_restShapes) {
+    if (rest->softBody == &softBody) {
+      if (rest->shape.nodeCount() != static_cast<Index>(softBody.m_nodes.size())) {
+        captureInto(rest->shape, softBody);
+      }
+      return rest->shape;
+    }
+  }
+  m_restShapes.push_back(std::make_unique<SoftRest>());
+  m_restShapes.back()->softBody = &softBody;
+  captureInto(m_restShapes.back()->shape, softBody);
+  return m_restShapes.back()->shape;
+}
+
+void Tool::captureRestShape(const btSoftBody& softBody) {
+  for (auto& rest : m_restShapes) {
+    if (rest->softBody == &softBody) {
+      captureInto(rest->shape, softBody);
+      return;
+    }
+  }
+  restShape(softBody);
+}
+
 const ToolStepReport& Tool::report() {
   m_report.contacts.clear();
   m_report.diagnostics = ToolDiagnostics{};
   m_report.wrench = Wrench{};
+  ToolForce& contactForce = m_report.contactForce;
+  contactForce.force = Vec3{};
+  contactForce.torque = Vec3{};
+  contactForce.faces.clear();
   ToolDiagnostics& diagnostics = m_report.diagnostics;
   const Pose bodyPose = toPose(m_body.getWorldTransform());
+  contactForce.torquePoint = bodyPose.apply(m_options.force.torquePoint);
 
   for (const auto& statePointer : m_pairs) {
     const detail::PairState& state = *statePointer;
@@ -99,6 +145,12 @@ const ToolStepReport& Tool::report() {
     m_report.wrench.force += state.wrench.force;
     m_report.wrench.torque +=
         state.wrench.torque + cross(piecePose.translation - bodyPose.translation, state.wrench.force);
+
+    for (const FaceForce& face : state.faceForces) {
+      contactForce.faces.push_back({state.softBody, state.piece, face});
+      contactForce.force += face.force;
+      contactForce.torque += cross(face.point - contactForce.torquePoint, face.force);
+    }
 
     // What the soft solver left inside the tool, measured at the positions the step ended with.
     const ToolModel& model = m_pieces[state.piece];

@@ -86,10 +86,8 @@ void makeContactsLast(btSoftBody& softBody) {
 
 // Writes the corrections into the soft body: the moves, the solver's holds, and for a dynamic tool
 // the reaction. A correction that is not finite is counted and never written.
-void applyResponse(PairState& state, btSoftBody& softBody, const btCollisionObject& toolObject, btScalar timeStep) {
-  const btRigidBody* rigidBody = btRigidBody::upcast(&toolObject);
-  btRigidBody* dynamicBody =
-      rigidBody != nullptr && !rigidBody->isStaticOrKinematicObject() ? const_cast<btRigidBody*>(rigidBody) : nullptr;
+// dynamicBody, when not null, is a dynamic tool that takes the moved nodes' reaction.
+void applyResponse(PairState& state, btSoftBody& softBody, btRigidBody* dynamicBody, btScalar timeStep) {
   for (const NodeCorrection& correction : state.corrections) {
     if (!isFinite(correction.displacement) || !isFinite(correction.normal)) {
       ++state.rejectedCorrections;
@@ -98,6 +96,7 @@ void applyResponse(PairState& state, btSoftBody& softBody, const btCollisionObje
     btSoftBody::Node& node = softBody.m_nodes[static_cast<int>(state.patch.nodeIds[correction.vertex])];
     const btVector3 displacement = toBt(correction.displacement);
     node.m_x += displacement;
+    state.patch.positions[correction.vertex] += correction.displacement;
     if (dynamicBody != nullptr) {
       // The node's change of momentum, taken from the tool.
       dynamicBody->applyImpulse(displacement * (-1 / (node.m_im * timeStep)),
@@ -119,6 +118,12 @@ void applyResponse(PairState& state, btSoftBody& softBody, const btCollisionObje
     btSoftBody::Node& node = softBody.m_nodes[static_cast<int>(state.patch.nodeIds[hold.vertex])];
     softBody.m_rcontacts.push_back(holdContact(node, hold, *state.holdBodies[holdsUsed++], timeStep));
   }
+}
+
+btRigidBody* dynamicTool(const btCollisionObject& toolObject) {
+  const btRigidBody* rigidBody = btRigidBody::upcast(&toolObject);
+  return rigidBody != nullptr && !rigidBody->isStaticOrKinematicObject() ? const_cast<btRigidBody*>(rigidBody)
+                                                                          : nullptr;
 }
 
 }  // namespace
@@ -159,6 +164,32 @@ void ToolAlgorithm::processCollision(const btCollisionObjectWrapper* body0, cons
     PairState& state = m_tool.pairState(softBody, piece);
     processPiece(state, softBody, toolBody, toolWrap, bodyBefore * m_tool.pieceTransform(piece),
                  bodyNow * m_tool.pieceTransform(piece), true);
+  }
+}
+
+void ToolAlgorithm::computeForces(PairState& state, btSoftBody& softBody, btScalar timeStep,
+                                  btRigidBody* reactingBody) {
+  const ForceSettings& settings = m_tool.m_options.force;
+  const RestShape& rest = m_tool.restShape(softBody);
+  if (settings.measure == DeformationMeasure::Indentation) {
+    state.anchorPositions.clear();
+    for (Index node : rest.anchors()) {
+      state.anchorPositions.push_back(toVec3(softBody.m_nodes[static_cast<int>(node)].m_x));
+    }
+    state.rigidFit = fitRigidMotion(rest, state.anchorPositions, state.rigidFit);
+  }
+  state.forceHistory.resize(static_cast<Index>(softBody.m_faces.size()));
+  computeContactForces(state.patch, state.contacts, rest, state.rigidFit, settings, timeStep, state.forceHistory,
+                       state.faceForces);
+  if (reactingBody == nullptr) {
+    return;
+  }
+  for (const FaceForce& face : state.faceForces) {
+    if (isFinite(face.force) && isFinite(face.point) && lengthSquared(face.force) > 0) {
+      reactingBody->applyImpulse(toBt(face.force * timeStep),
+                                 toBt(face.point) - reactingBody->getCenterOfMassPosition());
+      reactingBody->activate();
+    }
   }
 }
 
@@ -272,7 +303,12 @@ void ToolAlgorithm::processPiece(PairState& state, btSoftBody& softBody, const b
       makeContactsLast(softBody);
     }
   }
-  applyResponse(state, softBody, toolBody, timeStep);
+  btRigidBody* dynamicBody = dynamicTool(toolBody);
+  const bool forceReacts = options.force.enabled && options.force.applyToDynamicTool;
+  applyResponse(state, softBody, forceReacts ? nullptr : dynamicBody, timeStep);
+  if (options.force.enabled) {
+    computeForces(state, softBody, timeStep, forceReacts ? dynamicBody : nullptr);
+  }
   releasePatch(state);
   const auto responded = Clock::now();
   state.detectionMicroseconds = microsecondsBetween(start, detected);

@@ -7,6 +7,7 @@
 
 #include <BulletCollision/BroadphaseCollision/btCollisionAlgorithm.h>
 
+class btRigidBody;
 class btSoftBody;
 
 #include <thintool/core/Math.h>
@@ -51,6 +52,8 @@ class ToolAlgorithm final : public btCollisionAlgorithm {
   // Detection, response and their application for one piece of the tool against softBody.
   void processPiece(PairState& state, btSoftBody& softBody, const btCollisionObject& toolBody,
                     const btCollisionObjectWrapper* toolWrap, const Pose& previousPose, const Pose& pose, bool swept);
+  // The force model on the piece's contacts; reactingBody, when not null, receives the force.
+  void computeForces(PairState& state, btSoftBody& softBody, btScalar timeStep, btRigidBody* reactingBody);
 
   Tool& m_tool;
   Mode m_mode;

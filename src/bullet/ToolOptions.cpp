@@ -27,6 +27,20 @@ std::string validateToolOptions(const ToolOptions& options) {
             << options.filters.reverseRayLength;
   } else if (!(std::isfinite(options.response.stiffness) && options.response.stiffness > 0)) {
     problem << "response.stiffness must be a finite stiffness > 0 N/m, got " << options.response.stiffness;
+  } else if (options.force.enabled) {
+    const HuntCrossley& hc = options.force.huntCrossley;
+    if (!(std::isfinite(hc.stiffness) && hc.stiffness >= 0)) {
+      problem << "force.huntCrossley.stiffness must be finite and >= 0 N/m^n, got " << hc.stiffness;
+    } else if (!(std::isfinite(hc.damping) && hc.damping >= 0)) {
+      problem << "force.huntCrossley.damping must be finite and >= 0 N*s/m^(n+1), got " << hc.damping;
+    } else if (!(std::isfinite(hc.exponent) && hc.exponent > 0)) {
+      problem << "force.huntCrossley.exponent must be finite and > 0, got " << hc.exponent;
+    } else if (!(std::isfinite(options.force.rateCutoff) && options.force.rateCutoff >= 0)) {
+      problem << "force.rateCutoff must be a finite frequency >= 0 Hz (0 = unfiltered), got "
+              << options.force.rateCutoff;
+    } else if (!isFinite(options.force.torquePoint)) {
+      problem << "force.torquePoint must be finite";
+    }
   }
   return problem.str();
 }

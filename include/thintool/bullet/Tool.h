@@ -49,6 +49,21 @@ struct ToolDiagnostics {
   Index invalidPosePairs = 0;
 };
 
+/// The tissue's force on one soft face in contact (force/ContactForce.h).
+struct ToolFaceForce {
+  const btSoftBody* softBody = nullptr;
+  Index piece = 0;
+  FaceForce face;
+};
+
+/// The force model's result for the step: zero and empty while ToolOptions::force is off.
+struct ToolForce {
+  Vec3 force;        ///< net, world (N), on the tool
+  Vec3 torque;       ///< about torquePoint, world (N·m)
+  Vec3 torquePoint;  ///< ForceSettings::torquePoint in world coordinates at the step's end
+  std::vector<ToolFaceForce> faces;
+};
+
 class Tool;
 struct ToolOptions;
 Tool& addTool(btCollisionWorld& world, btRigidBody& body, const ToolOptions& options);
@@ -57,8 +72,11 @@ bool removeTool(btCollisionWorld& world, const btRigidBody& body);
 struct ToolStepReport {
   std::vector<ToolContact> contacts;
   ToolDiagnostics diagnostics;
-  /// Force (N) and torque about the tool body's origin (N·m) the response put on the tool.
+  /// Force (N) and torque about the tool body's origin (N·m) the response put on the tool: the
+  /// reaction of the soft nodes it moved, Σ m·Δx/dt².
   Wrench wrench;
+  /// The tissue's force on the tool by the force model (Hunt–Crossley by default).
+  ToolForce contactForce;
 };
 
 class CollisionConfiguration;
@@ -93,6 +111,10 @@ class Tool {
   /// stepSimulation() returns; the reference stays valid until the next call.
   const ToolStepReport& report();
 
+  /// Takes the soft body's current shape as its rest shape for the force model's deformation. By
+  /// default the rest shape is the one the body had when the force model first met it.
+  void captureRestShape(const btSoftBody& softBody);
+
   /// Declares that the tool's next move is a jump (re-homing a device, a pose set by hand), not
   /// a motion: swept detection then does not sweep the space in between for one step.
   void resetMotion();
@@ -104,6 +126,8 @@ class Tool {
   friend Tool& addTool(btCollisionWorld&, btRigidBody&, const ToolOptions&);
   friend bool removeTool(btCollisionWorld&, const btRigidBody&);
   detail::PairState& pairState(btSoftBody& softBody, Index piece);
+  /// The soft body's rest shape, captured now if it has none or its node count changed.
+  const RestShape& restShape(const btSoftBody& softBody);
   /// Swept detection's view of the tool's motion in this step: the body's pose at its start and at
   /// its end. Kinematic and static tools: the pose the last time the proxy's box was updated, and
   /// now. Dynamic tools: Bullet's pose now and its unconstrained prediction for the step's end.
@@ -116,6 +140,11 @@ class Tool {
   std::vector<ToolModel> m_pieces;
   std::vector<Pose> m_pieceTransforms;
   std::vector<std::unique_ptr<detail::PairState>> m_pairs;
+  struct SoftRest {
+    const btSoftBody* softBody = nullptr;
+    RestShape shape;
+  };
+  std::vector<std::unique_ptr<SoftRest>> m_restShapes;
   /// With swept detection: the collision object whose box is the tool's swept box, so that Bullet
   /// makes a pair with every soft body the tool sweeps past (the tool's own box is not swept).
   std::unique_ptr<detail::SweptProxy> m_proxy;

@@ -7,6 +7,7 @@
 /// (a 0.8 × 0.02 × 0.8 m plate into a 128-face ball of radius 1 m) and scale with the tool's size.
 
 #include <thintool/detection/Detection.h>
+#include <thintool/force/ContactForce.h>
 #include <thintool/response/Response.h>
 #include <thintool/tool/ToolModel.h>
 
@@ -35,6 +36,8 @@ struct ToolOptions {
   /// contact's side from the motion).
   FilterSettings filters;
   ResponseSettings response;
+  /// The tissue's force on the tool (force/ContactForce.h): off by default.
+  ForceSettings force;
 
   /// The paper's algorithm as published: discrete rays, association, both checks.
   static ToolOptions paper() {
