@@ -224,7 +224,6 @@ double SoftBallScene::ballMeanHeight() const {
   return sum / m_ball->m_nodes.size();
 }
 
-namespace {
 
 std::vector<Point> nodePositions(const btSoftBody& ball) {
   std::vector<Point> points(ball.m_nodes.size());
@@ -245,7 +244,6 @@ std::vector<std::array<int, 3>> faceIndices(const btSoftBody& ball) {
   return faces;
 }
 
-}  // namespace
 
 PressResult runPress(const PressSettings& settings) {
   SoftBallScene scene(settings.scene);

@@ -16,6 +16,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 class btSoftRigidDynamicsWorld;
 class btSoftBody;
@@ -111,6 +112,10 @@ struct PressResult {
 };
 
 PressResult runPress(const PressSettings& settings);
+
+/// The ball's node positions and face indices, for the metrics.
+std::vector<Point> nodePositions(const btSoftBody& ball);
+std::vector<std::array<int, 3>> faceIndices(const btSoftBody& ball);
 
 /// Drives the tool of a settled scene through poseAt(step) for steps steps, tracking the ball's
 /// nodes against the tool; the tracker starts at pose 0.

@@ -1,7 +1,9 @@
 #!/bin/sh
-# Installs the Debian bookworm packages that building, testing and benchmarking ThinTool need.
+# Installs the Debian bookworm packages that building, testing and benchmarking ThinTool need;
+# gnuplot-nox draws the examples' plots (optional: without it they write CSV only).
 set -eu
 if [ "$(id -u)" -eq 0 ]; then run=""; else run="sudo"; fi
 $run apt-get update -qq
 $run env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends \
-  cmake g++ make pkg-config libbullet-dev libgtest-dev libbenchmark-dev
+  cmake g++ make pkg-config libbullet-dev libgtest-dev libbenchmark-dev \
+  gnuplot-nox

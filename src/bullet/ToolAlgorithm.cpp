@@ -167,8 +167,8 @@ void ToolAlgorithm::processCollision(const btCollisionObjectWrapper* body0, cons
   }
 }
 
-void ToolAlgorithm::computeForces(PairState& state, btSoftBody& softBody, btScalar timeStep,
-                                  btRigidBody* reactingBody) {
+void ToolAlgorithm::computeForces(PairState& state, btSoftBody& softBody, const Pose& pose, Real skin,
+                                  btScalar timeStep, btRigidBody* reactingBody) {
   const ForceSettings& settings = m_tool.m_options.force;
   const RestShape& rest = m_tool.restShape(softBody);
   if (settings.measure == DeformationMeasure::Indentation) {
@@ -179,8 +179,8 @@ void ToolAlgorithm::computeForces(PairState& state, btSoftBody& softBody, btScal
     state.rigidFit = fitRigidMotion(rest, state.anchorPositions, state.rigidFit);
   }
   state.forceHistory.resize(static_cast<Index>(softBody.m_faces.size()));
-  computeContactForces(state.patch, state.contacts, rest, state.rigidFit, settings, timeStep, state.forceHistory,
-                       state.faceForces);
+  computeContactForces(m_tool.m_pieces[state.piece], pose, skin, state.patch, state.contacts, rest, state.rigidFit,
+                       settings, timeStep, state.forceHistory, state.faceForces);
   if (reactingBody == nullptr) {
     return;
   }
@@ -307,7 +307,7 @@ void ToolAlgorithm::processPiece(PairState& state, btSoftBody& softBody, const b
   const bool forceReacts = options.force.enabled && options.force.applyToDynamicTool;
   applyResponse(state, softBody, forceReacts ? nullptr : dynamicBody, timeStep);
   if (options.force.enabled) {
-    computeForces(state, softBody, timeStep, forceReacts ? dynamicBody : nullptr);
+    computeForces(state, softBody, pose, skin, timeStep, forceReacts ? dynamicBody : nullptr);
   }
   releasePatch(state);
   const auto responded = Clock::now();

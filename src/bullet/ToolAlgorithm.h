@@ -53,7 +53,8 @@ class ToolAlgorithm final : public btCollisionAlgorithm {
   void processPiece(PairState& state, btSoftBody& softBody, const btCollisionObject& toolBody,
                     const btCollisionObjectWrapper* toolWrap, const Pose& previousPose, const Pose& pose, bool swept);
   // The force model on the piece's contacts; reactingBody, when not null, receives the force.
-  void computeForces(PairState& state, btSoftBody& softBody, btScalar timeStep, btRigidBody* reactingBody);
+  void computeForces(PairState& state, btSoftBody& softBody, const Pose& pose, Real skin, btScalar timeStep,
+                     btRigidBody* reactingBody);
 
   Tool& m_tool;
   Mode m_mode;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace thintool {
 
@@ -114,12 +115,13 @@ void ForceHistory::reset() {
   m_step += 2;  // nothing recorded so far is the previous step any more
 }
 
-void computeContactForces(const SoftPatch& patch, const std::vector<Contact>& contacts, const RestShape& rest,
-                          const RigidFit& rigidFit, const ForceSettings& settings, Real dt, ForceHistory& history,
+void computeContactForces(const ToolModel& model, const Pose& toolPose, Real skin, const SoftPatch& patch,
+                          const std::vector<Contact>& contacts, const RestShape& rest, const RigidFit& rigidFit,
+                          const ForceSettings& settings, Real dt, ForceHistory& history,
                           std::vector<FaceForce>& outForces) {
   outForces.clear();
   ++history.m_step;
-  if (!settings.enabled || contacts.empty() || !(dt > 0)) {
+  if (!settings.enabled || !(dt > 0)) {
     return;
   }
   // A node collides when a contact holds it; it keeps the sum of those contacts' normals, which
@@ -132,6 +134,27 @@ void computeContactForces(const SoftPatch& patch, const std::vector<Contact>& co
       if (v < patch.vertexCount() && isFinite(contact.normal)) {
         vertexNormal[v] += contact.normal;
       }
+    }
+  }
+  // Touching nodes: inside the tool grown by skin + touchTolerance; pushed along the normal of
+  // the face they are farthest in front of.
+  const Real reach = skin + settings.touchTolerance;
+  for (Index v = 0; v < patch.vertexCount(); ++v) {
+    if (lengthSquared(vertexNormal[v]) > 0 || !isFinite(patch.positions[v])) {
+      continue;
+    }
+    const Vec3 local = toolPose.applyInverse(patch.positions[v]);
+    Real outside = -std::numeric_limits<Real>::max();
+    const Plane* nearest = nullptr;
+    for (const Plane& plane : model.planes) {
+      const Real distance = plane.signedDistance(local);
+      if (distance > outside) {
+        outside = distance;
+        nearest = &plane;
+      }
+    }
+    if (nearest != nullptr && outside <= reach) {
+      vertexNormal[v] = toolPose.rotation * nearest->normal;
     }
   }
   const Real smoothing = settings.rateCutoff > 0 ? 1 - std::exp(-2 * kPi * settings.rateCutoff * dt) : 1;

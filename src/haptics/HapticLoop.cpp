@@ -66,7 +66,7 @@ bool HapticLoop::tick(double now) {
   const double started = m_running ? clockNow() : now;
   DeviceState state;
   const bool alive = m_device.read(now, state);
-  const Vec3 position = m_settings.workspaceOffset + state.position * m_settings.workspaceScale;
+  const Vec3 position = state.position;
 
   std::unique_lock<std::mutex> lock(m_mutex);
   if (!alive) {
@@ -81,6 +81,7 @@ bool HapticLoop::tick(double now) {
   m_snapshot.time = now;
   m_snapshot.position = position;
   m_snapshot.velocity = velocity;
+  m_snapshot.worldPosition = m_settings.workspaceOffset + position * m_settings.workspaceScale;
   m_snapshot.buttons = state.buttons;
   m_snapshot.valid = true;
   const bool toolKnown = m_toolTime >= 0;
@@ -115,8 +116,8 @@ void HapticLoop::publishTool(const Vec3& position, const Vec3& velocity) {
   }
   const double now = m_running ? clockNow() : -1;
   std::lock_guard<std::mutex> lock(m_mutex);
-  m_toolPosition = position;
-  m_toolVelocity = velocity;
+  m_toolPosition = (position - m_settings.workspaceOffset) / m_settings.workspaceScale;
+  m_toolVelocity = velocity / m_settings.workspaceScale;
   m_toolTime = now >= 0 ? now : std::max(m_snapshot.time, 0.0);
 }
 
@@ -130,9 +131,10 @@ Vec3 HapticLoop::toolForce(const Vec3& toolPosition, const Vec3& toolVelocity) c
   if (!snapshot.valid) {
     return {};
   }
-  const Vec3 force = couplingForceUnclamped(m_settings.coupling, snapshot.position, snapshot.velocity, toolPosition,
-                                            toolVelocity);
-  return isFinite(force) ? -force : Vec3{};
+  const Real scale = m_settings.workspaceScale;
+  const Vec3 force = couplingForceUnclamped(m_settings.coupling, snapshot.position, snapshot.velocity,
+                                            (toolPosition - m_settings.workspaceOffset) / scale, toolVelocity / scale);
+  return isFinite(force) ? force * (-1 / scale) : Vec3{};
 }
 
 Vec3 HapticLoop::deviceForce() const {

@@ -73,6 +73,10 @@ struct Press {
   std::vector<Vec3> anchors;
   RigidFit fit;
   ForceSettings settings;
+  // A 4 × 0.02 × 4 plate, parked far above unless a test lowers it: the contacts alone count.
+  ToolModel plate = buildToolModel(makeBoxMesh({2, 0.01, 2}), ToolModelSettings{});
+  Pose platePose{Mat3{}, {0, 100, 0}};
+  Real skin = 0.01;
   static constexpr Real kDt = 0.001;
 
   Press() {
@@ -118,7 +122,9 @@ struct Press {
     }
     return sum;
   }
-  void step() { computeContactForces(patch, contacts, rest, fit, settings, kDt, history, forces); }
+  void step() {
+    computeContactForces(plate, platePose, skin, patch, contacts, rest, fit, settings, kDt, history, forces);
+  }
 };
 
 TEST(ContactForce, OffComputesNothing) {
@@ -225,6 +231,21 @@ TEST(ContactForce, RateFilterSmoothsAJump) {
     EXPECT_GT(raw.forces[i].rate, 0);
     EXPECT_NEAR(filtered.forces[i].rate, alpha * raw.forces[i].rate, 1e-9 * raw.forces[i].rate);
   }
+}
+
+TEST(ContactForce, NodesTouchingTheToolCollideWithoutAContact) {
+  // The projection left the pressed cap on the plate's underside: no contact this step, yet the
+  // faces touching the plate deform and push back.
+  Press press;
+  press.contacts.clear();
+  press.pose(Mat3{}, {}, 0.05);
+  press.step();
+  EXPECT_TRUE(press.forces.empty()) << "the parked plate touches nothing";
+  press.platePose.translation = {0, 1 - 0.05 + 0.01 + press.skin, 0};  // underside a skin above the top
+  press.skin = 0.1;  // reaches the pressed cap's rim too
+  press.step();
+  ASSERT_FALSE(press.forces.empty());
+  EXPECT_GT(press.net().y, 0);
 }
 
 TEST(ContactForce, CustomLawReplacesHuntCrossley) {

@@ -27,6 +27,7 @@
 #include <thintool/core/Math.h>
 #include <thintool/detection/Detection.h>
 #include <thintool/detection/SoftPatch.h>
+#include <thintool/tool/ToolModel.h>
 
 #include <cstdint>
 #include <functional>
@@ -55,6 +56,8 @@ struct ForceSettings {
   HuntCrossley huntCrossley;
   /// Replaces huntCrossley when set.
   ForceLaw law;
+  /// How far beyond the skin a soft node still touches the tool (m, >= 0).
+  Real touchTolerance = 0.001;
   /// Cut-off frequency (Hz, > 0) of the first-order low-pass filter on ẋ; 0 leaves ẋ unfiltered.
   Real rateCutoff = 30;
   /// The point the reported torque is taken about, in the tool body's frame (m): the grip, say.
@@ -117,8 +120,9 @@ class ForceHistory {
   void reset();
 
  private:
-  friend void computeContactForces(const SoftPatch&, const std::vector<Contact>&, const RestShape&, const RigidFit&,
-                                   const ForceSettings&, Real, ForceHistory&, std::vector<FaceForce>&);
+  friend void computeContactForces(const ToolModel&, const Pose&, Real, const SoftPatch&, const std::vector<Contact>&,
+                                   const RestShape&, const RigidFit&, const ForceSettings&, Real, ForceHistory&,
+                                   std::vector<FaceForce>&);
   std::vector<Real> m_lastDeformation;
   std::vector<Real> m_rate;
   std::vector<std::uint32_t> m_lastStep;
@@ -126,12 +130,13 @@ class ForceHistory {
   std::uint32_t m_step = 1;
 };
 
-/// The forces of this step's soft faces in contact, on the tool, for a step of dt seconds.
-/// patch.positions must hold where the response left the nodes; contacts' patchVertices index
-/// into patch. rigidFit is ignored by the centroid measure. Allocates nothing once the history
-/// and outForces have grown to the soft body.
-void computeContactForces(const SoftPatch& patch, const std::vector<Contact>& contacts, const RestShape& rest,
-                          const RigidFit& rigidFit, const ForceSettings& settings, Real dt, ForceHistory& history,
+/// The forces of this step's soft faces in contact with the tool piece at toolPose (grown by
+/// skin, m), on the tool, for a step of dt seconds. patch.positions must hold where the response
+/// left the nodes; contacts' patchVertices index into patch. rigidFit is ignored by the centroid
+/// measure. Allocates nothing once the history and outForces have grown to the soft body.
+void computeContactForces(const ToolModel& model, const Pose& toolPose, Real skin, const SoftPatch& patch,
+                          const std::vector<Contact>& contacts, const RestShape& rest, const RigidFit& rigidFit,
+                          const ForceSettings& settings, Real dt, ForceHistory& history,
                           std::vector<FaceForce>& outForces);
 
 }  // namespace thintool

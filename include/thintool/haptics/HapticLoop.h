@@ -24,16 +24,19 @@ namespace thintool::haptics {
 struct HapticLoopSettings {
   Real rate = 1000;  ///< Hz
   CouplingSettings coupling;
-  /// World position = workspaceOffset + workspaceScale · device position; forces are not scaled.
+  /// World position = workspaceOffset + workspaceScale · device position (> 0). The coupling works
+  /// in the device's own metres and newtons, so its stiffness is what the hand feels; the tool's
+  /// force is the device's divided by workspaceScale, which keeps power equal on both sides.
   Real workspaceScale = 1;
   Vec3 workspaceOffset;
 };
 
-/// What the physics reads from the loop: the device's latest state, in world coordinates.
+/// What the physics reads from the loop: the device's latest state.
 struct DeviceSnapshot {
-  double time = 0;  ///< s, loop clock
-  Vec3 position;    ///< world (m)
-  Vec3 velocity;    ///< world (m/s), backward difference over one tick
+  double time = 0;      ///< s, loop clock
+  Vec3 position;        ///< device (m)
+  Vec3 velocity;        ///< device (m/s), backward difference over one tick
+  Vec3 worldPosition;   ///< the device's point in the world (m)
   std::uint32_t buttons = 0;
   bool valid = false;     ///< at least one tick has read the device
   bool finished = false;  ///< the device stopped answering (a recording ended)
@@ -71,9 +74,10 @@ class HapticLoop {
   void publishTool(const Vec3& position, const Vec3& velocity);
   DeviceSnapshot device() const;
   /// The coupling's force on the tool (N, world) for the latest device state and the given tool
-  /// state: the opposite of what the device feels, before the device's clamp.
+  /// state (world): the opposite of what the device feels, before the device's clamp, divided by
+  /// workspaceScale.
   Vec3 toolForce(const Vec3& toolPosition, const Vec3& toolVelocity) const;
-  /// The force last written to the device (N, device frame = world axes).
+  /// The force last written to the device (N; the device's axes are the world's).
   Vec3 deviceForce() const;
 
   LoopStatistics statistics() const;
@@ -93,7 +97,7 @@ class HapticLoop {
 
   mutable std::mutex m_mutex;  // guards everything below
   DeviceSnapshot m_snapshot;
-  Vec3 m_toolPosition;
+  Vec3 m_toolPosition;  // device frame
   Vec3 m_toolVelocity;
   double m_toolTime = -1;
   Vec3 m_deviceForce;

@@ -1,0 +1,120 @@
+// SPDX-License-Identifier: Zlib
+// Copyright (c) 2026 The ThinTool developers
+#include "HapticDemo.h"
+
+#include <BulletSoftBody/btSoftBody.h>
+#include <BulletSoftBody/btSoftRigidDynamicsWorld.h>
+#include <btBulletDynamicsCommon.h>
+
+#include <algorithm>
+#include <chrono>
+#include <thread>
+
+namespace thintool::scenes {
+
+haptics::HapticLoopSettings HapticDemoSettings::defaultLoop() {
+  haptics::HapticLoopSettings loop;
+  loop.rate = 1000;
+  // A Falcon's ±5 cm reach becomes ±0.5 m over the 1 m ball.
+  loop.workspaceScale = 10;
+  // Against the 50 g the hand feels of the tool, 3 N·s/m would leave the coupling ringing
+  // (damping ratio 0.1); 10 gives 0.4, far above the hold's bound of 1.5.
+  loop.coupling.damping = 10;
+  return loop;
+}
+
+ToolOptions HapticDemoSettings::defaultToolOptions() {
+  ToolOptions options;
+  options.force.enabled = true;
+  options.force.measure = DeformationMeasure::Indentation;
+  // With the workspace scaled by 10 the hand feels 10 times the tissue's force on the tool.
+  options.force.huntCrossley.stiffness = 0.8;
+  options.force.huntCrossley.damping = 0.4;
+  options.force.huntCrossley.exponent = 1.5;
+  return options;
+}
+
+namespace {
+
+Vec3 toVec(const btVector3& v) { return {v.x(), v.y(), v.z()}; }
+btVector3 toBtVector(const Vec3& v) { return btVector3(btScalar(v.x), btScalar(v.y), btScalar(v.z)); }
+
+}  // namespace
+
+HapticDemoResult runHapticDemo(const HapticDemoSettings& settings, haptics::Device& device) {
+  SceneSettings sceneSettings;
+  sceneSettings.tool = ToolShape::Plate;
+  sceneSettings.timeStep = 1 / settings.physicsRate;
+  sceneSettings.toolOptions = settings.toolOptions;
+  SoftBallScene scene(sceneSettings);
+  scene.settle();
+
+  haptics::HapticLoopSettings loopSettings = settings.loop;
+  loopSettings.workspaceOffset = {0, scene.ballTop() + settings.originAboveTop, 0};
+  haptics::HapticLoop loop(device, loopSettings);
+
+  // The tool starts where the device's origin maps, held by the coupling: no gravity (the hand
+  // carries it), no rotation (a Falcon has three translations).
+  const Vec3 start = loopSettings.workspaceOffset;
+  scene.makeToolDynamic(settings.toolMass, btTransform(btQuaternion::getIdentity(), toBtVector(start)));
+  btRigidBody& tool = scene.toolBody();
+  tool.setLinearFactor(btVector3(1, 1, 1));
+  tool.setGravity(btVector3(0, 0, 0));
+  tool.setActivationState(DISABLE_DEACTIVATION);
+  loop.publishTool(start, {});
+
+  const std::vector<std::array<int, 3>> faces = faceIndices(scene.ball());
+  CrossingTracker tracker;
+  tracker.start(scene.toolBox(), nodePositions(scene.ball()), scene.ballMeanHeight());
+
+  HapticDemoResult result;
+  const double dt = 1 / settings.physicsRate;
+  using Clock = std::chrono::steady_clock;
+  const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(dt));
+  if (settings.realTime) {
+    loop.start();
+  }
+  auto next = Clock::now();
+  double physicsMicroseconds = 0;
+  for (int step = 0;; ++step) {
+    const double now = step * dt;
+    if (settings.realTime) {
+      if (!loop.running()) {
+        break;
+      }
+    } else if (!loop.tick(now)) {
+      break;
+    }
+    const Vec3 position = toVec(tool.getCenterOfMassPosition());
+    const Vec3 velocity = toVec(tool.getLinearVelocity());
+    tool.applyCentralForce(toBtVector(loop.toolForce(position, velocity)));
+    physicsMicroseconds += scene.step();
+    loop.publishTool(toVec(tool.getCenterOfMassPosition()), toVec(tool.getLinearVelocity()));
+    tracker.update(scene.toolBox(), nodePositions(scene.ball()), faces);
+
+    const ToolStepReport& report = scene.tool()->report();
+    HapticSample sample;
+    sample.time = now;
+    sample.device = loop.device().worldPosition;
+    sample.tool = toVec(tool.getCenterOfMassPosition());
+    sample.deviceForce = loop.deviceForce();
+    sample.contactForce = report.contactForce.force;
+    sample.contacts = static_cast<int>(report.contacts.size());
+    for (const ToolFaceForce& face : report.contactForce.faces) {
+      sample.largestDeformation = std::max(sample.largestDeformation, face.face.deformation);
+    }
+    result.trace.push_back(sample);
+    if (settings.realTime) {
+      next += period;
+      std::this_thread::sleep_until(next);
+    }
+  }
+  loop.stop();
+  result.steps = static_cast<int>(result.trace.size());
+  result.physicsMicrosecondsPerStep = result.steps > 0 ? physicsMicroseconds / result.steps : 0;
+  result.loop = loop.statistics();
+  result.metrics = tracker.metrics();
+  return result;
+}
+
+}  // namespace thintool::scenes
