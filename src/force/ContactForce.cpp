@@ -184,16 +184,15 @@ void computeContactForces(const ToolModel& model, const Pose& toolPose, Real ski
     if (!known || !isFinite(centroid)) {
       continue;
     }
-    // x as a function of the centroid, and its direction on the tool.
-    Vec3 direction;
+    // The tool is pushed back against the direction it pushes the face, whichever measure gives x:
+    // the direction of the centroid's displacement (the paper does not say which it uses) turns
+    // sideways and even upwards as a squashed body bulges.
+    const Vec3 normal = normalizedOrZero(pushed);
+    const Vec3 direction = -normal;
     auto deformationAt = [&](const Vec3& point) {
       if (settings.measure == DeformationMeasure::CentroidDisplacement) {
-        const Vec3 moved = point - restCentroid;
-        direction = -normalizedOrZero(moved);
-        return length(moved);
+        return length(point - restCentroid);
       }
-      const Vec3 normal = normalizedOrZero(pushed);
-      direction = -normal;
       return dot(point - rigidFit.apply(restCentroid), normal);
     };
     const Real previousDeformation = deformationAt(previousCentroid);

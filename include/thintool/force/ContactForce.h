@@ -11,6 +11,7 @@
 /// - DeformationMeasure::CentroidDisplacement, the paper's: the distance of the face's centroid
 ///   from where it was at rest. It counts the body's own rigid motion (a ball rolling away from
 ///   its rest pose) as deformation.
+/// Either way a face's force pushes the tool back along the contact normal.
 /// - DeformationMeasure::Indentation (default): how far the face's centroid has been pushed in
 ///   along the contact normal, measured from its rest position carried along by the body's rigid
 ///   motion. The rigid motion is estimated by shape matching (Müller et al., "Meshless
