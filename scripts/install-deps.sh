@@ -1,9 +1,10 @@
 #!/bin/sh
 # Installs the Debian bookworm packages that building, testing and benchmarking ThinTool need;
-# gnuplot-nox draws the examples' plots (optional: without it they write CSV only).
+# gnuplot-nox draws the examples' plots (optional: without it they write CSV only); clang and its
+# runtime build the libFuzzer targets.
 set -eu
 if [ "$(id -u)" -eq 0 ]; then run=""; else run="sudo"; fi
 $run apt-get update -qq
 $run env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends \
   cmake g++ make pkg-config libbullet-dev libgtest-dev libbenchmark-dev \
-  gnuplot-nox
+  gnuplot-nox clang libclang-rt-14-dev

@@ -1,7 +1,9 @@
 #!/bin/sh
 # Builds ThinTool with warnings as errors and runs the whole test suite (unit, integration,
 # install and a brief benchmark run), then the same against Bullet's float64 build: the core
-# computes in double either way, the glue converts. Needs the packages of scripts/install-deps.sh.
+# computes in double either way, the glue converts. Then the tests again under AddressSanitizer
+# and UndefinedBehaviorSanitizer, and each libFuzzer target for a short run (clang).
+# Needs the packages of scripts/install-deps.sh.
 set -eu
 cd "$(dirname "$0")/.."
 cmake -S . -B build-float64 -DCMAKE_BUILD_TYPE=Release -DTHINTOOL_WERROR=ON -DTHINTOOL_BULLET_DOUBLE=ON \
@@ -11,3 +13,18 @@ ctest --test-dir build-float64 --parallel 2 --output-on-failure --exclude-regex 
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DTHINTOOL_WERROR=ON
 cmake --build build --parallel 2
 ctest --test-dir build --parallel 2 --output-on-failure
+
+cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTHINTOOL_WERROR=ON \
+  -DTHINTOOL_SANITIZE=address,undefined,float-cast-overflow -DTHINTOOL_BUILD_BENCHMARKS=OFF
+cmake --build build-sanitize --parallel 2
+ctest --test-dir build-sanitize --parallel 2 --output-on-failure --exclude-regex 'Install|Docs'
+
+CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTHINTOOL_BUILD_FUZZERS=ON \
+  -DTHINTOOL_BUILD_TESTS=OFF -DTHINTOOL_BUILD_EXAMPLES=OFF -DTHINTOOL_BUILD_BENCHMARKS=OFF
+cmake --build build-fuzz --parallel 2
+for target in tool_model replay; do
+  # The shipped corpus is the seed; new finds go to a scratch copy, never into the tree.
+  rm -rf "build-fuzz/corpus-$target" && cp -r "fuzz/corpus/$target" "build-fuzz/corpus-$target"
+  "./build-fuzz/fuzz/fuzz_$target" -max_total_time=20 -artifact_prefix="build-fuzz/$target-" \
+    "build-fuzz/corpus-$target"
+done

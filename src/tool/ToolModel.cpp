@@ -139,11 +139,14 @@ void sampleFacePatches(ToolModel& model, const SamplingSettings& sampling, Real 
       }
     }
     // The slack keeps a side of exactly n·spacing from getting n + 1 cells through rounding.
-    const Index cellsU = static_cast<Index>(std::max<Real>(1, std::ceil((high.u - low.u) / spacing - 1e-9)));
-    const Index cellsV = static_cast<Index>(std::max<Real>(1, std::ceil((high.v - low.v) / spacing - 1e-9)));
-    if (Real(model.nodeCount()) + Real(cellsU) * Real(cellsV) > Real(sampling.maxNodes)) {
+    // Counted in Real first: a huge face at a fine spacing has more cells than an Index holds.
+    const Real realCellsU = std::max<Real>(1, std::ceil((high.u - low.u) / spacing - 1e-9));
+    const Real realCellsV = std::max<Real>(1, std::ceil((high.v - low.v) / spacing - 1e-9));
+    if (!(Real(model.nodeCount()) + realCellsU * realCellsV <= Real(sampling.maxNodes))) {
       throwTooManyNodes(sampling, spacing);
     }
+    const auto cellsU = static_cast<Index>(realCellsU);
+    const auto cellsV = static_cast<Index>(realCellsV);
     const Real cellU = (high.u - low.u) / cellsU;
     const Real cellV = (high.v - low.v) / cellsV;
     const Real negligibleArea = 1e-12 * cellU * cellV;
@@ -196,11 +199,13 @@ void sampleBoxFaceGrid(ToolModel& model, const SamplingSettings& sampling, Real 
   if (half.z < half[thin]) thin = 2;
   const int axisU = (thin + 1) % 3;
   const int axisV = (thin + 2) % 3;
-  const Index cellsU = static_cast<Index>(std::max<Real>(1, std::ceil(2 * half[axisU] / spacing - 1e-9)));
-  const Index cellsV = static_cast<Index>(std::max<Real>(1, std::ceil(2 * half[axisV] / spacing - 1e-9)));
-  if (Real(cellsU) * Real(cellsV) * 2 > Real(sampling.maxNodes)) {
+  const Real realCellsU = std::max<Real>(1, std::ceil(2 * half[axisU] / spacing - 1e-9));
+  const Real realCellsV = std::max<Real>(1, std::ceil(2 * half[axisV] / spacing - 1e-9));
+  if (!(realCellsU * realCellsV * 2 <= Real(sampling.maxNodes))) {
     throwTooManyNodes(sampling, spacing);
   }
+  const auto cellsU = static_cast<Index>(realCellsU);
+  const auto cellsV = static_cast<Index>(realCellsV);
   const Real cellU = 2 * half[axisU] / cellsU;
   const Real cellV = 2 * half[axisV] / cellsV;
   for (int side = -1; side <= 1; side += 2) {

@@ -138,6 +138,12 @@ TEST(ToolModel, SpacingSetsTheDensityAndTheCapStopsRunawaySampling) {
   ToolModelSettings millimetresTypedAsMetres;
   millimetresTypedAsMetres.sampling.spacing = 1e-5;
   EXPECT_THROW(buildToolModel(makeBoxMesh({0.4, 0.01, 0.4}), millimetresTypedAsMetres), Error);
+  // More cells than an index can count (the fuzzer's find): refused, not overflowed.
+  ToolModelSettings tiny;
+  tiny.sampling.spacing = 1e-9;
+  EXPECT_THROW(buildToolModel(makeBoxMesh({1e3, 1, 1e3}), tiny), Error);
+  tiny.sampling.layout = SamplingLayout::BoxFaceGrid;
+  EXPECT_THROW(buildToolModel(makeBoxMesh({1e3, 1, 1e3}), tiny), Error);
 }
 
 TEST(ToolModel, InvalidInputIsAnErrorNotACrash) {
