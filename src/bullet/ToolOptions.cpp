@@ -38,6 +38,8 @@ std::string validateToolOptions(const ToolOptions& options) {
     } else if (!(std::isfinite(options.force.rateCutoff) && options.force.rateCutoff >= 0)) {
       problem << "force.rateCutoff must be a finite frequency >= 0 Hz (0 = unfiltered), got "
               << options.force.rateCutoff;
+    } else if (!isLength(options.force.touchTolerance)) {
+      problem << "force.touchTolerance must be a finite length >= 0 m, got " << options.force.touchTolerance;
     } else if (!isFinite(options.force.torquePoint)) {
       problem << "force.torquePoint must be finite";
     }

@@ -15,6 +15,7 @@ namespace thintool::haptics {
 namespace {
 
 const char* const kFields[] = {"time", "x", "y", "z", "buttons"};
+const double kLimits[] = {1e9, 1e6, 1e6, 1e6, 4294967295.0};  // s, m, m, m, bit mask
 
 [[noreturn]] void fail(const std::string& name, std::size_t line, const std::string& what) {
   throw Error(name + ":" + std::to_string(line) + ": " + what);
@@ -30,6 +31,11 @@ double parseNumber(const std::string& text, const std::string& name, std::size_t
   }
   if (end == begin || end == nullptr || *end != '\0' || errno == ERANGE || !std::isfinite(value)) {
     fail(name, line, std::string("field '") + kFields[field] + "': expected a finite number, got '" + text + "'");
+  }
+  // Bounds far beyond any device, so that interpolating between two rows cannot overflow.
+  if (std::abs(value) > kLimits[field]) {
+    fail(name, line, std::string("field '") + kFields[field] + "': expected a magnitude of at most " +
+                         std::to_string(kLimits[field]) + ", got '" + text + "'");
   }
   return value;
 }

@@ -16,6 +16,7 @@
 
 #include <cmath>
 #include <functional>
+#include <utility>
 
 #include <memory>
 #include <string>
@@ -103,6 +104,32 @@ TEST(Configuration, InvalidOptionsNameTheToolAndTheField) {
   EXPECT_NE(message.find("sampling.spacing"), std::string::npos) << message;
   EXPECT_EQ(findTool(w.world, w.body), nullptr) << "a failed registration leaves nothing behind";
   EXPECT_NO_THROW(addTool(w.world, w.body, ToolOptions::rayOnly()));
+}
+
+TEST(Configuration, InvalidForceOptionsNameTheField) {
+  World w(std::make_unique<CollisionConfiguration>());
+  const std::pair<std::function<void(ForceSettings&)>, const char*> cases[] = {
+      {[](ForceSettings& f) { f.huntCrossley.stiffness = -1; }, "force.huntCrossley.stiffness"},
+      {[](ForceSettings& f) { f.huntCrossley.exponent = 0; }, "force.huntCrossley.exponent"},
+      {[](ForceSettings& f) { f.huntCrossley.exponent = -1.5; }, "force.huntCrossley.exponent"},
+      {[](ForceSettings& f) { f.huntCrossley.damping = std::nan(""); }, "force.huntCrossley.damping"},
+      {[](ForceSettings& f) { f.rateCutoff = -30; }, "force.rateCutoff"},
+      {[](ForceSettings& f) { f.touchTolerance = INFINITY; }, "force.touchTolerance"},
+      {[](ForceSettings& f) { f.torquePoint = {0, std::nan(""), 0}; }, "force.torquePoint"},
+  };
+  for (const auto& [spoil, field] : cases) {
+    ToolOptions options;
+    options.name = "spatula";
+    options.force.enabled = true;
+    spoil(options.force);
+    const std::string message = errorOf([&] { addTool(w.world, w.body, options); });
+    EXPECT_NE(message.find("spatula"), std::string::npos) << message;
+    EXPECT_NE(message.find(field), std::string::npos) << message;
+    EXPECT_EQ(findTool(w.world, w.body), nullptr);
+  }
+  ToolOptions off;
+  off.force.huntCrossley.exponent = -1;  // not checked while the force model is off
+  EXPECT_NO_THROW(addTool(w.world, w.body, off));
 }
 
 TEST(Configuration, NonConvexShapesAreRejected) {

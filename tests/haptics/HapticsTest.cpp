@@ -148,6 +148,8 @@ TEST(ReplayDevice, BadFilesNameLineAndField) {
   expectError("time,x,y,z,buttons\n0,0,abc,0,0\n", "bad.csv:2: field 'y': expected a finite number");
   expectError("time,x,y,z,buttons\n0,0,0,nan,0\n", "field 'z'");
   expectError("time,x,y,z,buttons\n0,0,0,0,1.5\n", "field 'buttons'");
+  // Two rows a fuzzer wrote: interpolating between them overflowed to infinity.
+  expectError("time,x,y,z,buttons\n0,1e308,0,0,0\n1,-1e308,0,0,0\n", "bad.csv:2: field 'x': expected a magnitude");
   expectError("time,x,y,z,buttons\n1,0,0,0,0\n\n1,0,0,0,0\n", "bad.csv:4: field 'time': expected times to increase");
   expectError("time,x,y,z,buttons\n", "no samples");
   EXPECT_THROW(ReplayDevice::fromFile("/nonexistent/trajectory.csv"), Error);

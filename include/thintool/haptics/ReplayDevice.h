@@ -4,7 +4,8 @@
 
 /// @file
 /// A device that plays a recorded trajectory: a CSV file with a header line and rows
-/// "time,x,y,z,buttons" (s, m, m, m, integer), times increasing. Between rows the position is
+/// "time,x,y,z,buttons" (s, m, m, m, integer), times increasing, |time| <= 1e9 s and
+/// |x|, |y|, |z| <= 1e6 m. Between rows the position is
 /// interpolated linearly; buttons keep the earlier row's value. The forces written to it are kept,
 /// so that a replay can be compared with the recording's run.
 
