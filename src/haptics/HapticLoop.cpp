@@ -9,7 +9,8 @@ namespace thintool::haptics {
 
 namespace {
 
-constexpr std::size_t kRecordedTicks = std::size_t(1) << 20;  // 17 minutes at 1 kHz
+// The statistics cover the latest ticks, kept in rings: order does not matter to them.
+constexpr std::size_t kRecordedTicks = std::size_t(1) << 16;  // 65 s at 1 kHz
 
 double percentile(std::vector<double> values, double fraction) {
   if (values.empty()) {
@@ -23,7 +24,7 @@ double percentile(std::vector<double> values, double fraction) {
 }  // namespace
 
 HapticLoop::HapticLoop(Device& device, const HapticLoopSettings& settings) : m_device(device), m_settings(settings) {
-  m_tickStart.reserve(kRecordedTicks);
+  m_period.reserve(kRecordedTicks);
   m_latency.reserve(kRecordedTicks);
   m_toolAge.reserve(kRecordedTicks);
 }
@@ -102,11 +103,24 @@ bool HapticLoop::tick(double now) {
   if (length(unclamped) > coupling.maxForce) {
     ++m_clamped;
   }
-  if (m_tickStart.size() < kRecordedTicks) {
-    m_tickStart.push_back(now);
+  const std::size_t slot = m_ticks % kRecordedTicks;
+  if (m_latency.size() < kRecordedTicks) {
     m_latency.push_back(written - started);
     m_toolAge.push_back(toolAge);
+  } else {
+    m_latency[slot] = written - started;
+    m_toolAge[slot] = toolAge;
   }
+  if (m_ticks > 0) {
+    const std::size_t periodSlot = (m_ticks - 1) % kRecordedTicks;
+    if (m_period.size() < kRecordedTicks) {
+      m_period.push_back(now - m_lastTickStart);
+    } else {
+      m_period[periodSlot] = now - m_lastTickStart;
+    }
+  }
+  m_lastTickStart = now;
+  ++m_ticks;
   return true;
 }
 
@@ -145,17 +159,15 @@ Vec3 HapticLoop::deviceForce() const {
 LoopStatistics HapticLoop::statistics() const {
   std::lock_guard<std::mutex> lock(m_mutex);
   LoopStatistics stats;
-  stats.ticks = m_tickStart.size();
+  stats.ticks = m_ticks;
   stats.clampedTicks = m_clamped;
-  if (m_tickStart.size() < 2) {
+  if (m_period.empty()) {
     return stats;
   }
-  std::vector<double> periods;
-  periods.reserve(m_tickStart.size() - 1);
+  const std::vector<double>& periods = m_period;
   double sum = 0;
-  for (std::size_t i = 1; i < m_tickStart.size(); ++i) {
-    periods.push_back(m_tickStart[i] - m_tickStart[i - 1]);
-    sum += periods.back();
+  for (double p : periods) {
+    sum += p;
   }
   const double mean = sum / double(periods.size());
   double variance = 0;

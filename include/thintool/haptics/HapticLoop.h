@@ -42,6 +42,7 @@ struct DeviceSnapshot {
   bool finished = false;  ///< the device stopped answering (a recording ended)
 };
 
+/// Over the latest 65,536 ticks (65 s at 1 kHz); ticks and clampedTicks count them all.
 struct LoopStatistics {
   std::size_t ticks = 0;
   double rate = 0;           ///< ticks per second of loop clock (Hz)
@@ -101,8 +102,10 @@ class HapticLoop {
   Vec3 m_toolVelocity;
   double m_toolTime = -1;
   Vec3 m_deviceForce;
-  // Per tick, preallocated: the tick's start, its latency and the age of the tool state it used.
-  std::vector<double> m_tickStart;
+  // Rings over the latest ticks, preallocated: periods, latencies, ages of the tool state used.
+  std::size_t m_ticks = 0;
+  double m_lastTickStart = 0;
+  std::vector<double> m_period;
   std::vector<double> m_latency;
   std::vector<double> m_toolAge;
   std::size_t m_clamped = 0;
