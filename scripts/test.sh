@@ -1,18 +1,12 @@
 #!/bin/sh
-# Builds ThinTool with warnings as errors and runs the whole test suite (unit, integration,
-# install and a brief benchmark run), then the same against Bullet's float64 build: the core
-# computes in double either way, the glue converts. Then the tests again under AddressSanitizer
-# and UndefinedBehaviorSanitizer, and each libFuzzer target for a short run (clang).
+# Runs each libFuzzer target for a short, fixed run (clang) and the tests under AddressSanitizer
+# and UndefinedBehaviorSanitizer; then builds ThinTool with warnings as errors against Bullet's
+# float64 build and its float build and runs the whole test suite on each (unit, integration,
+# install and a brief benchmark run): the core computes in double either way, the glue converts.
+# The float build's ctest summary is the last thing printed.
 # Needs the packages of scripts/install-deps.sh.
 set -eu
 cd "$(dirname "$0")/.."
-cmake -S . -B build-float64 -DCMAKE_BUILD_TYPE=Release -DTHINTOOL_WERROR=ON -DTHINTOOL_BULLET_DOUBLE=ON \
-  -DTHINTOOL_BUILD_BENCHMARKS=OFF
-cmake --build build-float64 --parallel 2
-ctest --test-dir build-float64 --parallel 2 --output-on-failure --exclude-regex 'Install|Docs'
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DTHINTOOL_WERROR=ON
-cmake --build build --parallel 2
-ctest --test-dir build --parallel 2 --output-on-failure
 
 cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTHINTOOL_WERROR=ON \
   -DTHINTOOL_SANITIZE=address,undefined,float-cast-overflow -DTHINTOOL_BUILD_BENCHMARKS=OFF
@@ -30,3 +24,11 @@ for run in tool_model:40000 replay:400000; do
   "./build-fuzz/fuzz/fuzz_$target" -seed=1 -runs="${run#*:}" -artifact_prefix="build-fuzz/$target-" \
     "build-fuzz/corpus-$target"
 done
+
+cmake -S . -B build-float64 -DCMAKE_BUILD_TYPE=Release -DTHINTOOL_WERROR=ON -DTHINTOOL_BULLET_DOUBLE=ON \
+  -DTHINTOOL_BUILD_BENCHMARKS=OFF
+cmake --build build-float64 --parallel 2
+ctest --test-dir build-float64 --parallel 2 --output-on-failure --exclude-regex 'Install|Docs'
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DTHINTOOL_WERROR=ON
+cmake --build build --parallel 2
+ctest --test-dir build --parallel 2 --output-on-failure
