@@ -34,13 +34,6 @@ ToolOptions HapticDemoSettings::defaultToolOptions() {
   return options;
 }
 
-namespace {
-
-Vec3 toVec(const btVector3& v) { return {v.x(), v.y(), v.z()}; }
-btVector3 toBtVector(const Vec3& v) { return btVector3(btScalar(v.x), btScalar(v.y), btScalar(v.z)); }
-
-}  // namespace
-
 HapticDemoResult runHapticDemo(const HapticDemoSettings& settings, haptics::Device& device) {
   SceneSettings sceneSettings;
   sceneSettings.tool = ToolShape::Plate;
@@ -56,7 +49,7 @@ HapticDemoResult runHapticDemo(const HapticDemoSettings& settings, haptics::Devi
   // The tool starts where the device's origin maps, held by the coupling: no gravity (the hand
   // carries it), no rotation (a Falcon has three translations).
   const Vec3 start = loopSettings.workspaceOffset;
-  scene.makeToolDynamic(settings.toolMass, btTransform(btQuaternion::getIdentity(), toBtVector(start)));
+  scene.makeToolDynamic(settings.toolMass, btTransform(btQuaternion::getIdentity(), toBt(start)));
   btRigidBody& tool = scene.toolBody();
   tool.setLinearFactor(btVector3(1, 1, 1));
   tool.setGravity(btVector3(0, 0, 0));
@@ -85,18 +78,18 @@ HapticDemoResult runHapticDemo(const HapticDemoSettings& settings, haptics::Devi
     } else if (!loop.tick(now)) {
       break;
     }
-    const Vec3 position = toVec(tool.getCenterOfMassPosition());
-    const Vec3 velocity = toVec(tool.getLinearVelocity());
-    tool.applyCentralForce(toBtVector(loop.toolForce(position, velocity)));
+    const Vec3 position = toVec3(tool.getCenterOfMassPosition());
+    const Vec3 velocity = toVec3(tool.getLinearVelocity());
+    tool.applyCentralForce(toBt(loop.toolForce(position, velocity)));
     physicsMicroseconds += scene.step();
-    loop.publishTool(toVec(tool.getCenterOfMassPosition()), toVec(tool.getLinearVelocity()));
+    loop.publishTool(toVec3(tool.getCenterOfMassPosition()), toVec3(tool.getLinearVelocity()));
     tracker.update(scene.toolBox(), nodePositions(scene.ball()), faces);
 
     const ToolStepReport& report = scene.tool()->report();
     HapticSample sample;
     sample.time = now;
     sample.device = loop.device().worldPosition;
-    sample.tool = toVec(tool.getCenterOfMassPosition());
+    sample.tool = toVec3(tool.getCenterOfMassPosition());
     sample.deviceForce = loop.deviceForce();
     sample.contactForce = report.contactForce.force;
     sample.contacts = static_cast<int>(report.contacts.size());

@@ -89,7 +89,7 @@ void captureInto(RestShape& shape, const btSoftBody& softBody) {
 
 }  // namespace
 
-const RestShape& Tool::restShape(const btSoftBody& softBody) {
+RestShape& Tool::restShape(const btSoftBody& softBody) {
   for (auto& rest : m_restShapes) {
     if (rest->softBody == &softBody) {
       if (rest->shape.nodeCount() != static_cast<Index>(softBody.m_nodes.size())) {
@@ -105,13 +105,8 @@ const RestShape& Tool::restShape(const btSoftBody& softBody) {
 }
 
 void Tool::captureRestShape(const btSoftBody& softBody) {
-  for (auto& rest : m_restShapes) {
-    if (rest->softBody == &softBody) {
-      captureInto(rest->shape, softBody);
-      return;
-    }
-  }
-  restShape(softBody);
+  // restShape() captures only a body it has not seen; capture this one again whatever it had.
+  captureInto(restShape(softBody), softBody);
 }
 
 const ToolStepReport& Tool::report() {

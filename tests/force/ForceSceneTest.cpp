@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include <memory>
 #include <vector>
 
 namespace thintool::scenes {
@@ -28,31 +29,32 @@ ToolOptions withForce(DeformationMeasure measure) {
   return options;
 }
 
-// The plate goes down 2 mm a step from 10 cm above the ball's top; returns the force's y per step.
-std::vector<double> press(const ToolOptions& options, int steps, SoftBallScene** sceneOut = nullptr) {
+// The plate goes down 2 mm a step from 10 cm above the ball's top, recording the force's y.
+struct Press {
+  std::unique_ptr<SoftBallScene> scene;
+  std::vector<double> forces;
+};
+
+Press press(const ToolOptions& options, int steps) {
   SceneSettings settings;
   settings.toolOptions = options;
   settings.timeStep = 1.0 / 240;
-  static std::unique_ptr<SoftBallScene> scene;
-  scene = std::make_unique<SoftBallScene>(settings);
-  scene->settle();
-  const double top = scene->ballTop();
-  std::vector<double> forces;
+  Press run{std::make_unique<SoftBallScene>(settings), {}};
+  run.scene->settle();
+  const double top = run.scene->ballTop();
   for (int i = 0; i < steps; ++i) {
-    scene->step(btTransform(btQuaternion::getIdentity(), btVector3(0, btScalar(top + 0.1 - 0.002 * i), 0)));
-    forces.push_back(scene->tool()->report().contactForce.force.y);
+    run.scene->step(btTransform(btQuaternion::getIdentity(), btVector3(0, btScalar(top + 0.1 - 0.002 * i), 0)));
+    run.forces.push_back(run.scene->tool()->report().contactForce.force.y);
   }
-  if (sceneOut != nullptr) {
-    *sceneOut = scene.get();
-  }
-  return forces;
+  return run;
 }
 
 TEST(ForceScene, SlowPressPushesBackMoreTheDeeperItGoes) {
   for (DeformationMeasure measure : {DeformationMeasure::Indentation, DeformationMeasure::CentroidDisplacement}) {
     SCOPED_TRACE(measure == DeformationMeasure::Indentation ? "indentation" : "centroid");
-    SoftBallScene* scene = nullptr;
-    const std::vector<double> forces = press(withForce(measure), 96, &scene);
+    const Press run = press(withForce(measure), 96);
+    const std::vector<double>& forces = run.forces;
+    SoftBallScene* scene = run.scene.get();
     EXPECT_EQ(forces.front(), 0) << "no force before the plate reaches the skin";
     const double atFive = forces[75];   // 5 cm below the top
     const double atEight = forces[90];  // 8 cm
@@ -78,9 +80,9 @@ TEST(ForceScene, SlowPressPushesBackMoreTheDeeperItGoes) {
 }
 
 TEST(ForceScene, OffReportsNothing) {
-  SoftBallScene* scene = nullptr;
-  const std::vector<double> forces = press(ToolOptions{}, 60, &scene);
-  for (double f : forces) {
+  const Press run = press(ToolOptions{}, 60);
+  SoftBallScene* scene = run.scene.get();
+  for (double f : run.forces) {
     EXPECT_EQ(f, 0);
   }
   EXPECT_TRUE(scene->tool()->report().contactForce.faces.empty());

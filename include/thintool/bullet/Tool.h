@@ -127,7 +127,7 @@ class Tool {
   friend bool removeTool(btCollisionWorld&, const btRigidBody&);
   detail::PairState& pairState(btSoftBody& softBody, Index piece);
   /// The soft body's rest shape, captured now if it has none or its node count changed.
-  const RestShape& restShape(const btSoftBody& softBody);
+  RestShape& restShape(const btSoftBody& softBody);
   /// Swept detection's view of the tool's motion in this step: the body's pose at its start and at
   /// its end. Kinematic and static tools: the pose the last time the proxy's box was updated, and
   /// now. Dynamic tools: Bullet's pose now and its unconstrained prediction for the step's end.
