@@ -76,13 +76,12 @@ struct SoftBallScene::Bullet {
   btSequentialImpulseConstraintSolver constraintSolver;
   btDefaultSoftBodySolver softSolver;
   btBoxShape groundShape{btVector3(20, 1, 20)};
-  btDefaultMotionState groundMotion{btTransform(btQuaternion::getIdentity(), btVector3(0, -1, 0))};
+  btDefaultMotionState groundMotion;
   std::unique_ptr<btRigidBody> ground;
   std::unique_ptr<btBoxShape> toolShape;
   std::unique_ptr<btBoxShape> halfShape;
   std::unique_ptr<btCompoundShape> compound;
-  btDefaultMotionState toolMotion{
-      btTransform(btQuaternion::getIdentity(), btVector3(0, btScalar(kParkedHeight), 0))};
+  btDefaultMotionState toolMotion;
   std::unique_ptr<btRigidBody> tool;
 };
 
@@ -104,10 +103,12 @@ SoftBallScene::SoftBallScene(const SceneSettings& settings) : m_settings(setting
   info.m_sparsesdf.setDefaultVoxelsz(btScalar(variant.voxel));
   info.m_sparsesdf.Reset();
 
+  b.groundMotion.setWorldTransform(btTransform(btQuaternion::getIdentity(), atOrigin(0, -1, 0)));
+  b.toolMotion.setWorldTransform(btTransform(btQuaternion::getIdentity(), atOrigin(0, kParkedHeight, 0)));
   b.ground = std::make_unique<btRigidBody>(btRigidBody::btRigidBodyConstructionInfo(0, &b.groundMotion, &b.groundShape));
   m_world->addRigidBody(b.ground.get());
 
-  m_ball = btSoftBodyHelpers::CreateEllipsoid(info, btVector3(0, 1.3, 0), btVector3(1, 1, 1), settings.ballResolution);
+  m_ball = btSoftBodyHelpers::CreateEllipsoid(info, atOrigin(0, 1.3, 0), btVector3(1, 1, 1), settings.ballResolution);
   m_ball->m_materials[0]->m_kLST = 0.5;
   m_ball->m_cfg.kDF = 0.5;
   m_ball->m_cfg.kPR = 50;
@@ -119,12 +120,14 @@ SoftBallScene::SoftBallScene(const SceneSettings& settings) : m_settings(setting
   m_ball->getCollisionShape()->setMargin(btScalar(variant.margin));
   m_world->addSoftBody(m_ball);
 
-  const btVector3 half = settings.tool == ToolShape::Needle ? btVector3(0.5, 0.01, 0.01) : btVector3(0.4, 0.01, 0.4);
+  const btScalar halfThickness = btScalar(settings.toolThickness / 2);
+  const btVector3 half = settings.tool == ToolShape::Needle ? btVector3(0.5, halfThickness, halfThickness)
+                                                            : btVector3(0.4, halfThickness, 0.4);
   b.toolShape = std::make_unique<btBoxShape>(half);
   b.toolShape->setMargin(btScalar(0.001));
   btCollisionShape* toolShape = b.toolShape.get();
   if (settings.tool == ToolShape::SplitPlate) {
-    b.halfShape = std::make_unique<btBoxShape>(btVector3(0.2, 0.01, 0.4));
+    b.halfShape = std::make_unique<btBoxShape>(btVector3(0.2, halfThickness, 0.4));
     b.halfShape->setMargin(btScalar(0.001));
     b.compound = std::make_unique<btCompoundShape>();
     b.compound->addChildShape(btTransform(btQuaternion::getIdentity(), btVector3(-0.2, 0, 0)), b.halfShape.get());
@@ -156,7 +159,7 @@ SoftBallScene::~SoftBallScene() {
 
 void SoftBallScene::settle() {
   const int steps = static_cast<int>(std::lround(m_settings.settleSeconds / m_settings.timeStep));
-  const btTransform parked(btQuaternion::getIdentity(), btVector3(0, btScalar(kParkedHeight), 0));
+  const btTransform parked(btQuaternion::getIdentity(), atOrigin(0, kParkedHeight, 0));
   for (int i = 0; i < steps; ++i) {
     step(parked);
   }
@@ -204,6 +207,16 @@ ToolBox SoftBallScene::toolBox() const {
   const btVector3 half = m_bullet->toolShape->getHalfExtentsWithMargin();
   box.halfExtents = {half.x(), half.y(), half.z()};
   return box;
+}
+
+btVector3 SoftBallScene::atOrigin(double x, double y, double z) const {
+  const std::array<double, 3>& o = m_settings.origin;
+  return btVector3(btScalar(o[0] + x), btScalar(o[1] + y), btScalar(o[2] + z));
+}
+
+btVector3 SoftBallScene::aboveBall(double y) const {
+  const std::array<double, 3>& o = m_settings.origin;
+  return btVector3(btScalar(o[0]), btScalar(y), btScalar(o[2]));
 }
 
 double SoftBallScene::softMargin() const { return m_ball->getCollisionShape()->getMargin(); }
@@ -255,7 +268,7 @@ PressResult runPress(const PressSettings& settings) {
   const int moveSteps = static_cast<int>(std::ceil((startHeight - targetHeight) / (settings.speed * dt)));
   const int holdSteps = static_cast<int>(std::lround(settings.holdSeconds / dt));
 
-  btTransform pose(btQuaternion::getIdentity(), btVector3(0, btScalar(startHeight), 0));
+  btTransform pose(btQuaternion::getIdentity(), scene.aboveBall(startHeight));
   scene.step(pose);  // place the tool at its start
   const std::vector<std::array<int, 3>> faces = faceIndices(scene.ball());
   CrossingTracker tracker;
@@ -266,7 +279,7 @@ PressResult runPress(const PressSettings& settings) {
   double toolMicroseconds = 0;
   for (int i = 1; i <= moveSteps + holdSteps; ++i) {
     const double height = std::max(targetHeight, startHeight - settings.speed * dt * std::min(i, moveSteps));
-    pose.setOrigin(btVector3(0, btScalar(height), 0));
+    pose.setOrigin(scene.aboveBall(height));
     wallMicroseconds += scene.step(pose);
     tracker.update(scene.toolBox(), nodePositions(scene.ball()), faces);
     if (thintool::Tool* tool = scene.tool()) {

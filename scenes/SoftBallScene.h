@@ -50,6 +50,10 @@ struct SceneSettings {
   double settleSeconds = 2;
   int substeps = 1;  ///< internal steps per timeStep: stepSimulation(timeStep, substeps, timeStep / substeps)
   thintool::ToolOptions toolOptions;  ///< used when algorithm is ThinTool; ThinToolPaper sets swept = false
+  double toolThickness = 0.02;  ///< m, along the tool's y axis (0 makes a tool of zero thickness)
+  /// Where the scene is built (m): ground, ball and parked tool are placed relative to it.
+  /// Coordinates far from 0 cost float precision.
+  std::array<double, 3> origin{0, 0, 0};
 };
 
 /// A world with ground, ball and tool, stepped by the caller. The tool is kinematic and follows
@@ -78,9 +82,13 @@ class SoftBallScene {
   const SceneSettings& settings() const { return m_settings; }
   ToolBox toolBox() const;
   double softMargin() const;
-  /// Highest and mean node height of the ball (m).
+  /// Highest and mean node height of the ball (m, world).
   double ballTop() const;
   double ballMeanHeight() const;
+  /// The world position of a point given relative to settings().origin.
+  btVector3 atOrigin(double x, double y, double z) const;
+  /// The point at world height y on the vertical line through the ball's centre.
+  btVector3 aboveBall(double y) const;
 
  private:
   SceneSettings m_settings;
