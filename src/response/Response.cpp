@@ -9,6 +9,10 @@ namespace thintool {
 
 namespace {
 
+// How far inside the tool grown by the skin a node may lie and still count as on its surface (m):
+// a node the projection put on that surface, give or take rounding.
+constexpr Real kOnGrownSurface = 1e-9;
+
 // The smallest signed distance outside the piece's planes: positive outside, negative inside.
 Real outsideDistance(const ToolModel& model, const Vec3& local, Index* outPlane = nullptr) {
   Real best = -std::numeric_limits<Real>::max();
@@ -201,11 +205,18 @@ void computeHolds(const ToolModel& model, const Pose& toolPose, const SoftPatch&
   for (const NodeCorrection& correction : corrections) {
     work.m_moved[correction.vertex] = 1;
   }
+  // A moved node keeps its correction's plane, and the tool face's too: a correction along a soft
+  // face's normal gives a plane across the tool's face, which would leave the node free to go
+  // through the tool during the solve.
+  work.m_positions.assign(patch.positions.begin(), patch.positions.end());
+  for (const NodeCorrection& correction : corrections) {
+    work.m_positions[correction.vertex] += correction.displacement;
+  }
   for (Index vertex = 0; vertex < patch.vertexCount(); ++vertex) {
-    if (work.m_moved[vertex] || !(patch.inverseMasses[vertex] > 0)) {
+    if (!(patch.inverseMasses[vertex] > 0)) {
       continue;
     }
-    const Vec3 local = toolPose.applyInverse(patch.positions[vertex]);
+    const Vec3 local = toolPose.applyInverse(work.m_positions[vertex]);
     Index front = kInvalidIndex;
     Real distance = -std::numeric_limits<Real>::max();
     for (Index p = 0; p < model.planes.size(); ++p) {
@@ -215,8 +226,8 @@ void computeHolds(const ToolModel& model, const Pose& toolPose, const SoftPatch&
         front = p;
       }
     }
-    if (front == kInvalidIndex || distance < 0) {
-      continue;  // inside the grown tool, unmoved: its faces' contacts speak for it
+    if (front == kInvalidIndex || distance < -kOnGrownSurface) {
+      continue;  // inside the grown tool: its faces' contacts speak for it
     }
     // The face it is farthest in front of separates it from the tool: held behind that plane it
     // cannot enter the tool during the solve, and the plane is chosen anew every step, so a node
