@@ -118,7 +118,14 @@ const ToolStepReport& Tool::report() {
   contactForce.torque = Vec3{};
   contactForce.faces.clear();
   ToolDiagnostics& diagnostics = m_report.diagnostics;
-  const Pose bodyPose = toPose(m_body.getWorldTransform());
+  // A pose that is not finite was skipped by the step (the pairs held the tissue at the last good
+  // one): report about that one too, so that no NaN reaches the report.
+  Pose bodyPose = toPose(m_body.getWorldTransform());
+  if (isFinite(bodyPose)) {
+    m_lastFiniteBodyPose = bodyPose;
+  } else {
+    bodyPose = m_lastFiniteBodyPose;
+  }
   contactForce.torquePoint = bodyPose.apply(m_options.force.torquePoint);
 
   for (const auto& statePointer : m_pairs) {

@@ -214,8 +214,19 @@ void ToolAlgorithm::processPiece(PairState& state, btSoftBody& softBody, const b
   }
   if (!isFinite(pose) || !isFinite(previousPose)) {
     state.invalidPose = true;
+    if (!state.hasPreviousPose || !isFinite(state.previousPose)) {
+      return;
+    }
+    // The tissue stays held where the tool last was, as if it had stood still for a step: skipping
+    // the pair would let the soft body spring into the tool's space unopposed.
+    processValidPiece(state, softBody, toolBody, state.previousPose, state.previousPose, swept);
     return;
   }
+  processValidPiece(state, softBody, toolBody, previousPose, pose, swept);
+}
+
+void ToolAlgorithm::processValidPiece(PairState& state, btSoftBody& softBody, const btCollisionObject& toolBody,
+                                      const Pose& previousPose, const Pose& pose, bool swept) {
   const auto start = Clock::now();
   const ToolOptions& options = m_tool.m_options;
   const ToolModel& model = m_tool.m_pieces[state.piece];

@@ -52,6 +52,9 @@ class ToolAlgorithm final : public btCollisionAlgorithm {
   // Detection, response and their application for one piece of the tool against softBody.
   void processPiece(PairState& state, btSoftBody& softBody, const btCollisionObject& toolBody,
                     const btCollisionObjectWrapper* toolWrap, const Pose& previousPose, const Pose& pose, bool swept);
+  // processPiece's work once the poses are known to be finite.
+  void processValidPiece(PairState& state, btSoftBody& softBody, const btCollisionObject& toolBody,
+                         const Pose& previousPose, const Pose& pose, bool swept);
   // The force model on the piece's contacts; reactingBody, when not null, receives the force.
   void computeForces(PairState& state, btSoftBody& softBody, const Pose& pose, Real skin, btScalar timeStep,
                      btRigidBody* reactingBody);

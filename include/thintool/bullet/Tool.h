@@ -156,6 +156,7 @@ class Tool {
   SweptWorkspace m_sweptWorkspace;
   ResponseWorkspace m_responseWorkspace;
   ToolStepReport m_report;
+  Pose m_lastFiniteBodyPose;  // the report's frame when the body's transform is not finite
 };
 
 }  // namespace thintool
