@@ -16,10 +16,18 @@ namespace {
 // cannot be read from the geometry and comes from memory instead.
 constexpr Real kOnSurface = 1e-9;
 
+// A soft face whose area is below this fraction of its longest edge squared counts as collapsed:
+// float coordinates (Bullet's float build) leave a line of three nodes with about 1e-7 of it.
+constexpr Real kCollapsed = 1e-6;
+
 Aabb boxOf(std::initializer_list<Vec3> points) {
   Aabb box;
   for (const Vec3& p : points) box.include(p);
   return box;
+}
+
+Real longestEdgeSquared(const Vec3& a, const Vec3& b, const Vec3& c) {
+  return std::max({lengthSquared(b - a), lengthSquared(c - b), lengthSquared(a - c)});
 }
 
 int signOf(Real value) { return (value > 0) - (value < 0); }
@@ -126,11 +134,18 @@ struct Sweep {
     const auto& corners = patch.faces[f];
     motion = {f, &start[corners[0]], &start[corners[1]], &start[corners[2]], &end[corners[0]], &end[corners[1]],
            &end[corners[2]], {}, {}, false};
-    motion.n0 = normalizedOrZero(triangleNormal(*motion.a0, *motion.b0, *motion.c0));
-    motion.n1 = normalizedOrZero(triangleNormal(*motion.a1, *motion.b1, *motion.c1));
+    const Vec3 normal0 = triangleNormal(*motion.a0, *motion.b0, *motion.c0);
+    const Vec3 normal1 = triangleNormal(*motion.a1, *motion.b1, *motion.c1);
+    // A collapsed face (its corners on a line, give or take rounding) has no side: its nodes' own
+    // contacts handle it.
+    if (!(length(normal0) > kCollapsed * longestEdgeSquared(*motion.a0, *motion.b0, *motion.c0)) ||
+        !(length(normal1) > kCollapsed * longestEdgeSquared(*motion.a1, *motion.b1, *motion.c1))) {
+      return false;
+    }
+    motion.n0 = normal0 / length(normal0);
+    motion.n1 = normal1 / length(normal1);
     motion.turned = dot(motion.n0, motion.n1) < 0;
-    // A collapsed face has no side: its nodes' own contacts handle it.
-    return lengthSquared(motion.n0) > 0 && lengthSquared(motion.n1) > 0;
+    return true;
   }
 
   // A static tool point against a moving soft face.
@@ -301,6 +316,9 @@ void detectSwept(const ToolModel& model, const Pose& previousPose, const Pose& p
         sweep.toolPoint(point, motion);
       }
     });
+    if (motionKnown < 0) {
+      ++outCounters.skippedFaces;  // zero area at the start or the end: no side to keep
+    }
     for (Index e = 0; e < model.featureEdges.size(); ++e) {
       const Vec3& p0 = model.mesh.vertices[model.featureEdges[e][0]];
       const Vec3& p1 = model.mesh.vertices[model.featureEdges[e][1]];

@@ -4,6 +4,7 @@
 #include <thintool/geometry/RayTriangle.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <sstream>
@@ -54,6 +55,31 @@ std::string validateConvexMesh(const ConvexMesh& mesh) {
   if (!(size > 0)) {
     problem << "all vertices coincide";
     return problem.str();
+  }
+  // A flat shape (a spatula modelled as a quad, a box of zero height) has no inside to keep the
+  // soft body out of, and no sides to tell apart: say so, rather than name one of its slivers.
+  Index widest = 0;
+  Real widestArea = 0;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const auto& tri = mesh.triangles[t];
+    const Real area = length(triangleNormal(mesh.vertices[tri[0]], mesh.vertices[tri[1]], mesh.vertices[tri[2]]));
+    if (area > widestArea) {
+      widestArea = area;
+      widest = static_cast<Index>(t);
+    }
+  }
+  if (widestArea > 0) {
+    const auto& tri = mesh.triangles[widest];
+    const Vec3 normal = normalizedOrZero(
+        triangleNormal(mesh.vertices[tri[0]], mesh.vertices[tri[1]], mesh.vertices[tri[2]]));
+    Real thickness = 0;
+    for (const Vec3& v : mesh.vertices) {
+      thickness = std::max(thickness, std::abs(dot(normal, v - mesh.vertices[tri[0]])));
+    }
+    if (thickness <= kZeroAreaTolerance * size) {
+      problem << "the shape is flat (zero thickness); a thin tool needs a thickness, even of a micrometre";
+      return problem.str();
+    }
   }
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     const auto& tri = mesh.triangles[t];

@@ -87,7 +87,8 @@ struct DetectionCounters {
   Index colliding = 0;
   Index excludedByCheck1 = 0;
   Index excludedByCheck2 = 0;
-  Index skippedFaces = 0;    ///< faces with non-finite coordinates, left out
+  /// Faces left out: with non-finite coordinates, or (swept detection) of zero area near the tool.
+  Index skippedFaces = 0;
   Real maxDepth = 0;         ///< deepest accepted contact (m), 0 without contacts
 
   void accumulate(const DetectionCounters& o);
