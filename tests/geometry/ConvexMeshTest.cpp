@@ -49,6 +49,9 @@ TEST(ConvexMesh, RejectsBrokenMeshesWithTheirProblem) {
   std::swap(oneFlipped.triangles[0][1], oneFlipped.triangles[0][2]);
   EXPECT_NE(validateConvexMesh(oneFlipped).find("inconsistent winding"), std::string::npos);
 
+  EXPECT_NE(validateConvexMesh(makeBoxMesh({1, 0, 1})).find("flat"), std::string::npos);
+  EXPECT_EQ(validateConvexMesh(makeBoxMesh({1, 1e-6, 1})), "") << "a micrometre is a thickness";
+
   ConvexMesh dented = makeBoxMesh({1, 1, 1});
   dented.vertices[7] = {0.2, 0.2, 0.2};  // a corner pushed inside
   EXPECT_NE(validateConvexMesh(dented).find("not convex"), std::string::npos);
