@@ -142,11 +142,18 @@ SoftBallScene::SoftBallScene(const SceneSettings& settings) : m_settings(setting
   if (thinTool) {
     thintool::ToolOptions options = settings.toolOptions;
     options.swept = options.swept && settings.algorithm == Algorithm::ThinTool;
-    m_thinTool = &thintool::addTool(*m_world, *m_tool, options);
+    try {
+      m_thinTool = &thintool::addTool(*m_world, *m_tool, options);
+    } catch (...) {
+      tearDown();  // the destructor does not run for a constructor that throws
+      throw;
+    }
   }
 }
 
-SoftBallScene::~SoftBallScene() {
+SoftBallScene::~SoftBallScene() { tearDown(); }
+
+void SoftBallScene::tearDown() {
   if (m_thinTool != nullptr) {
     thintool::removeTool(*m_world, *m_tool);
   }

@@ -91,6 +91,8 @@ class SoftBallScene {
   btVector3 aboveBall(double y) const;
 
  private:
+  void tearDown();
+
   SceneSettings m_settings;
   struct Bullet;
   std::unique_ptr<Bullet> m_bullet;
