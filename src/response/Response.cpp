@@ -176,6 +176,27 @@ void computeResponse(const ToolModel& model, const Pose& toolPose, const Pose& p
     }
   }
 
+  if (settings.kind == ResponseKind::Constraint) {
+    // Pass 4: a face's contact moves its nodes along the face's normal, which near a rim can carry
+    // a node into the tool from a side no contact speaks for. Such a node leaves again through the
+    // face it was outside of at the start of the step, judged in the tool's previous pose.
+    for (NodeCorrection& correction : outCorrections) {
+      const Index vertex = correction.vertex;
+      const Vec3 local = toolPose.applyInverse(work.m_positions[vertex]);
+      if (outsideDistance(model, local) >= skin) {
+        continue;
+      }
+      Index entry = 0;
+      outsideDistance(model, previousToolPose.applyInverse(patch.previousPositions[vertex]), &entry);
+      const Real depth = skin - model.planes[entry].signedDistance(local);
+      if (depth > 0) {
+        const Vec3 normal = toolPose.applyToDirection(model.planes[entry].normal);
+        work.m_positions[vertex] += normal * depth;
+        correction.normal = normal;
+      }
+    }
+  }
+
   // Displacements, the reaction on the tool, and the slots cleared for the next call.
   const Real inverseDtSquared = 1 / (dt * dt);
   for (NodeCorrection& correction : outCorrections) {

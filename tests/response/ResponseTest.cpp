@@ -97,6 +97,29 @@ TEST(Response, NodesInsideTheToolLeaveThroughTheEntrySideAndPinnedNodesStay) {
   EXPECT_GT(f.wrench.force.y, 0) << "the tissue pushes the tool up";
 }
 
+TEST(Response, NoCorrectionEndsInsideTheTool) {
+  // A face under the plate whose contact asks it up to y = 0.01, the plate's mid-plane: met by
+  // moving its nodes, that would leave them inside the plate. They leave through the underside,
+  // the face they were outside of at the start of the step.
+  Fixture f;
+  const Index a = f.vertex({-0.1, -0.005, -0.1});
+  const Index b = f.vertex({0.1, -0.005, -0.1});
+  const Index c = f.vertex({0, -0.005, 0.1});
+  Contact contact;
+  contact.kind = ContactKind::ToolPoint;
+  contact.softNodeCount = 3;
+  contact.patchVertices = {a, c, b};
+  contact.patchFace = f.face(a, c, b);
+  contact.barycentric = {Real(1) / 3, Real(1) / 3, Real(1) / 3};
+  contact.normal = {0, 1, 0};
+  contact.offset = -0.01;
+  f.contacts.push_back(contact);
+  f.respond();
+  for (Index v : {a, b, c}) {
+    EXPECT_NEAR(f.finalPosition(v).y, -kSkin, 1e-12) << "vertex " << v;
+  }
+}
+
 TEST(Response, NodesAlreadyOutsideStayPut) {
   Fixture f;
   const Index a = f.vertex({-0.1, -0.002, -0.1});
