@@ -161,9 +161,9 @@ void addGeometryCases(std::vector<StressCase>& cases) {
   thin.scene.toolThickness = 1e-6;
   cases.push_back(thin);
 
-  // Touching exactly, with no skin, so the features meet at a point, not a margin apart.
+  // Touching exactly: ThinTool's contact surface is the tool grown by the skin (the soft body's
+  // margin, 5 cm here), so that surface is laid exactly on the soft feature.
   StressCase coplanar = base("geometry", "plate coplanar with the top soft face", Expectation::Contained);
-  coplanar.scene.toolOptions.skin = 0;
   coplanar.startPose = [](SoftBallScene& scene) {
     const btSoftBody& ball = scene.ball();
     const int top = topNode(ball);
@@ -175,23 +175,21 @@ void addGeometryCases(std::vector<StressCase>& cases) {
       btVector3 n = (face.m_n[1]->m_x - face.m_n[0]->m_x).cross(face.m_n[2]->m_x - face.m_n[0]->m_x);
       n = n.normalized() * (n.y() < 0 ? -1 : 1);
       const btVector3 centroid = (face.m_n[0]->m_x + face.m_n[1]->m_x + face.m_n[2]->m_x) / 3;
-      return restingOn(centroid, n, yOnto(n), scene.toolBox().halfExtents.y);
+      return restingOn(centroid, n, yOnto(n), scene.toolBox().halfExtents.y + scene.softMargin());
     }
     return btTransform::getIdentity();
   };
   cases.push_back(coplanar);
 
   StressCase vertex = base("geometry", "plate face exactly on the top soft vertex", Expectation::Contained);
-  vertex.scene.toolOptions.skin = 0;
   vertex.startPose = [](SoftBallScene& scene) {
     return restingOn(scene.ball().m_nodes[topNode(scene.ball())].m_x, btVector3(0, 1, 0),
-                     btQuaternion::getIdentity(), scene.toolBox().halfExtents.y);
+                     btQuaternion::getIdentity(), scene.toolBox().halfExtents.y + scene.softMargin());
   };
   cases.push_back(vertex);
 
   StressCase edge = base("geometry", "needle edge exactly on a top soft edge", Expectation::Contained);
   edge.scene.tool = ToolShape::Needle;
-  edge.scene.toolOptions.skin = 0;
   edge.startPose = [](SoftBallScene& scene) {
     const btSoftBody& ball = scene.ball();
     const int top = topNode(ball);
@@ -206,7 +204,10 @@ void addGeometryCases(std::vector<StressCase>& cases) {
       const btVector3 along = (other->m_x - ball.m_nodes[top].m_x).normalized();
       const btQuaternion alignAxis = shortestArcQuat(btVector3(1, 0, 0), along);
       const btQuaternion orientation = btQuaternion(along, btScalar(M_PI / 4)) * alignAxis;
-      const btVector3 lowestEdge = quatRotate(orientation, btVector3(0, -1, -1) * scene.toolBox().halfExtents.y);
+      // The lowest edge of the needle grown by the skin: a rounded edge, whose lowest point lies the
+      // skin below the box's edge.
+      const btVector3 lowestEdge = quatRotate(orientation, btVector3(0, -1, -1) * scene.toolBox().halfExtents.y) -
+                                   btVector3(0, btScalar(scene.softMargin()), 0);
       const btVector3 midpoint = (other->m_x + ball.m_nodes[top].m_x) / 2;
       return btTransform(orientation, midpoint - lowestEdge);
     }
@@ -271,8 +272,8 @@ void addMotionCases(std::vector<StressCase>& cases) {
     return btTransform(pressed.getRotation(), pressed.getOrigin() + btVector3(10, 0, 0));
   };
   cases.push_back(away);
-  // The plate's halves sweep half discs through the ball like a paddle: nodes end up on the other
-  // side of it, as they would in reality, so only stability is asked for.
+  // More than a quarter turn in a step is taken as a jump (Tool::resetMotion), not swept: the
+  // plate's local sides swap, so the crossing count is the metric's, and only stability is asked.
   StressCase turn = base("motion", "turned 180° about its long axis in one step, inside", Expectation::Stable);
   turn.jump = [](const btTransform& pressed, SoftBallScene&) {
     return btTransform(btQuaternion(btVector3(0, 0, 1), btScalar(M_PI)) * pressed.getRotation(), pressed.getOrigin());
