@@ -63,7 +63,9 @@ btSoftBody::RContact holdContact(btSoftBody::Node& node, const NodeHold& hold, b
   contact.m_c0 = ImpulseMatrix(timeStep, node.m_im, 0, zero, btVector3(0, 0, 0));
   contact.m_c1 = btVector3(0, 0, 0);
   contact.m_c2 = node.m_im * timeStep;
-  contact.m_c3 = 1;  // frictionless: the tangential motion is left alone
+  // Frictionless (1) leaves the tangential motion alone; a node friction holds (0) is kept where
+  // the response put it, which moves with the tool's surface.
+  contact.m_c3 = hold.sticks ? 0 : 1;
   contact.m_c4 = 0;  // no positional term: the hold body already aims at the plane
   return contact;
 }

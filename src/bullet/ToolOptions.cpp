@@ -27,6 +27,17 @@ std::string validateToolOptions(const ToolOptions& options) {
             << options.filters.reverseRayLength;
   } else if (!(std::isfinite(options.response.stiffness) && options.response.stiffness > 0)) {
     problem << "response.stiffness must be a finite stiffness > 0 N/m, got " << options.response.stiffness;
+  } else if (options.response.friction.enabled &&
+             !(std::isfinite(options.response.friction.staticCoefficient) &&
+               options.response.friction.staticCoefficient >= 0)) {
+    problem << "response.friction.staticCoefficient must be finite and >= 0, got "
+            << options.response.friction.staticCoefficient;
+  } else if (options.response.friction.enabled &&
+             !(std::isfinite(options.response.friction.kineticCoefficient) &&
+               options.response.friction.kineticCoefficient >= 0 &&
+               options.response.friction.kineticCoefficient <= options.response.friction.staticCoefficient)) {
+    problem << "response.friction.kineticCoefficient must be finite, >= 0 and <= staticCoefficient, got "
+            << options.response.friction.kineticCoefficient;
   } else if (options.force.enabled) {
     const HuntCrossley& hc = options.force.huntCrossley;
     if (!(std::isfinite(hc.stiffness) && hc.stiffness >= 0)) {

@@ -26,6 +26,33 @@ Real outsideDistance(const ToolModel& model, const Vec3& local, Index* outPlane 
   return best;
 }
 
+// Friction for each moved node (FrictionSettings). The tool's surface motion at a node is that of
+// the tool point where the node now is, from the previous pose to this one.
+void applyFriction(const FrictionSettings& friction, const Pose& toolPose, const Pose& previousToolPose,
+                   const SoftPatch& patch, std::vector<Vec3>& positions, std::vector<NodeCorrection>& corrections) {
+  for (NodeCorrection& correction : corrections) {
+    const Index vertex = correction.vertex;
+    Vec3& position = positions[vertex];
+    const Real normalMove = dot(position - patch.positions[vertex], correction.normal);
+    if (!(normalMove > 0)) {
+      continue;
+    }
+    const Vec3 surfaceMove = position - previousToolPose.apply(toolPose.applyInverse(position));
+    const Vec3 relative = position - patch.previousPositions[vertex] - surfaceMove;
+    const Vec3 tangential = relative - correction.normal * dot(relative, correction.normal);
+    const Real slip = length(tangential);
+    if (!(slip > 0)) {
+      continue;
+    }
+    if (slip <= friction.staticCoefficient * normalMove) {
+      position -= tangential;
+      correction.sticks = true;
+    } else {
+      position -= tangential * std::min<Real>(1, friction.kineticCoefficient * normalMove / slip);
+    }
+  }
+}
+
 }  // namespace
 
 void computeResponse(const ToolModel& model, const Pose& toolPose, const Pose& previousToolPose,
@@ -197,6 +224,10 @@ void computeResponse(const ToolModel& model, const Pose& toolPose, const Pose& p
     }
   }
 
+  if (settings.kind == ResponseKind::Constraint && settings.friction.enabled) {
+    applyFriction(settings.friction, toolPose, previousToolPose, patch, work.m_positions, outCorrections);
+  }
+
   // Displacements, the reaction on the tool, and the slots cleared for the next call.
   const Real inverseDtSquared = 1 / (dt * dt);
   for (NodeCorrection& correction : outCorrections) {
@@ -218,7 +249,7 @@ void computeHolds(const ToolModel& model, const Pose& toolPose, const SoftPatch&
   }
   for (const NodeCorrection& correction : corrections) {
     const Vec3 at = patch.positions[correction.vertex] + correction.displacement;
-    outHolds.push_back({correction.vertex, correction.normal, -dot(correction.normal, at)});
+    outHolds.push_back({correction.vertex, correction.normal, -dot(correction.normal, at), correction.sticks});
   }
   if (!holdUnmoved) {
     return;
@@ -255,7 +286,7 @@ void computeHolds(const ToolModel& model, const Pose& toolPose, const SoftPatch&
     // beside a rim can still wrap around it over several steps.
     const Plane& face = model.planes[front];
     const Vec3 normal = toolPose.applyToDirection(face.normal);
-    outHolds.push_back({vertex, normal, -dot(normal, toolPose.apply(face.normal * (face.offset + skin)))});
+    outHolds.push_back({vertex, normal, -dot(normal, toolPose.apply(face.normal * (face.offset + skin))), false});
   }
   for (const NodeCorrection& correction : corrections) {
     work.m_moved[correction.vertex] = 0;

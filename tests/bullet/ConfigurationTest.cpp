@@ -132,6 +132,25 @@ TEST(Configuration, InvalidForceOptionsNameTheField) {
   EXPECT_NO_THROW(addTool(w.world, w.body, off));
 }
 
+TEST(Configuration, InvalidFrictionNamesTheField) {
+  World w(std::make_unique<CollisionConfiguration>());
+  const std::pair<std::function<void(FrictionSettings&)>, const char*> cases[] = {
+      {[](FrictionSettings& f) { f.staticCoefficient = -0.1; }, "response.friction.staticCoefficient"},
+      {[](FrictionSettings& f) { f.kineticCoefficient = std::nan(""); }, "response.friction.kineticCoefficient"},
+      {[](FrictionSettings& f) { f.kineticCoefficient = f.staticCoefficient + 0.1; },
+       "response.friction.kineticCoefficient"},
+  };
+  for (const auto& [spoil, field] : cases) {
+    ToolOptions options;
+    options.name = "jaw";
+    options.response.friction.enabled = true;
+    spoil(options.response.friction);
+    const std::string message = errorOf([&] { addTool(w.world, w.body, options); });
+    EXPECT_NE(message.find("jaw"), std::string::npos) << message;
+    EXPECT_NE(message.find(field), std::string::npos) << message;
+  }
+}
+
 TEST(Configuration, NonConvexShapesAreRejected) {
   World w(std::make_unique<CollisionConfiguration>());
   btTriangleMesh mesh;

@@ -120,6 +120,35 @@ TEST(Response, NoCorrectionEndsInsideTheTool) {
   }
 }
 
+// One soft node 3 mm inside the underside while the plate slides 2 mm along +x in the step: the
+// normal move is 3 mm plus the skin, so friction can carry the node up to μ × 4 mm along.
+Real frictionDrag(bool enabled, Real staticCoefficient, Real kineticCoefficient) {
+  Fixture f;
+  const Index v = f.vertex({0, 0.003, 0});
+  Contact c;
+  c.kind = ContactKind::SoftNode;
+  c.softNodeCount = 1;
+  c.patchVertices = {v, kInvalidIndex, kInvalidIndex};
+  c.barycentric = {1, 0, 0};
+  c.normal = {0, -1, 0};
+  c.offset = -kSkin;  // the underside, y = 0, grown by the skin
+  c.depth = 0.003;
+  f.contacts.push_back(c);
+  Pose previous = f.pose;
+  previous.translation.x -= 0.002;
+  ResponseSettings settings;
+  settings.friction = {enabled, staticCoefficient, kineticCoefficient};
+  f.respond(settings, &previous);
+  EXPECT_NEAR(f.finalPosition(v).y, -kSkin, 1e-12) << "friction leaves the normal move alone";
+  return f.finalPosition(v).x;
+}
+
+TEST(Response, FrictionSticksWithinTheStaticConeAndSlidesBeyondIt) {
+  EXPECT_EQ(frictionDrag(false, 0.8, 0.6), 0) << "off: frictionless";
+  EXPECT_NEAR(frictionDrag(true, 0.8, 0.6), 0.002, 1e-12) << "2 mm slip < 0.8 × 4 mm: sticks";
+  EXPECT_NEAR(frictionDrag(true, 0.3, 0.2), 0.2 * 0.004, 1e-12) << "2 mm > 0.3 × 4 mm: slides, μk × 4 mm";
+}
+
 TEST(Response, NodesAlreadyOutsideStayPut) {
   Fixture f;
   const Index a = f.vertex({-0.1, -0.002, -0.1});

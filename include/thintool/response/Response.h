@@ -41,6 +41,18 @@ namespace thintool {
 
 enum class ResponseKind { Constraint, PaperForce, None };
 
+/// Coulomb friction between the tool and the soft nodes it moves, in position form (after
+/// Macklin et al., "Unified particle physics for real-time applications", 2014, §6.1): a moved
+/// node's tangential motion relative to the tool's surface is undone while it is within
+/// staticCoefficient × the node's normal move (it sticks), and reduced by kineticCoefficient × that
+/// move otherwise (it slides). The normal move stands for the normal force, N = m·d/dt². Off, it
+/// costs nothing.
+struct FrictionSettings {
+  bool enabled = false;
+  Real staticCoefficient = 0.8;   ///< μs (>= 0)
+  Real kineticCoefficient = 0.6;  ///< μk (>= 0, <= μs)
+};
+
 struct ResponseSettings {
   ResponseKind kind = ResponseKind::Constraint;
   /// PaperForce: k of f = k·t (N/m, > 0).
@@ -59,6 +71,9 @@ struct ResponseSettings {
   /// through the tool in the last iteration. The pass also re-solves that soft body's other
   /// contacts (with the ground, say) once more per iteration; switch it off to keep Bullet's order.
   bool contactsLast = true;
+  /// Constraint only: friction at the moved nodes; a node that sticks is held to the tool's
+  /// surface motion in the soft solver too (its hold is not frictionless).
+  FrictionSettings friction;
 };
 
 /// A soft node's move, and the direction it was moved out along.
@@ -66,6 +81,7 @@ struct NodeCorrection {
   Index vertex = kInvalidIndex;  ///< index in SoftPatch::positions
   Vec3 displacement;             ///< world (m)
   Vec3 normal;                   ///< world, unit, out of the tool: the direction the node must not go back along
+  bool sticks = false;           ///< friction holds it to the tool's surface (static friction)
 };
 
 /// A plane a soft node must not cross during the soft solver's iterations: dot(normal, x) + offset
@@ -74,6 +90,7 @@ struct NodeHold {
   Index vertex = kInvalidIndex;  ///< index in SoftPatch::positions
   Vec3 normal;
   Real offset = 0;
+  bool sticks = false;  ///< the solver also keeps the node from sliding along the plane
 };
 
 /// Net force on the tool (N) and torque about the tool's origin (N·m) from this step's response.
