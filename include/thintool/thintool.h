@@ -5,6 +5,7 @@
 /// @file
 /// Everything a Bullet application needs to use ThinTool.
 
+#include <thintool/bullet/Clamp.h>
 #include <thintool/bullet/CollisionConfiguration.h>
 #include <thintool/bullet/Convert.h>
 #include <thintool/bullet/Tool.h>

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Zlib
 // Copyright (c) 2026 The ThinTool developers
 #include <thintool/core/Error.h>
+#include <thintool/haptics/ClampMapping.h>
 #include <thintool/haptics/HapticLoop.h>
 #include <thintool/haptics/ReplayDevice.h>
 
@@ -13,6 +14,19 @@
 
 namespace thintool::haptics {
 namespace {
+
+TEST(ClampMapping, TwoAxesMoveThePlaneAndTheThirdOpens) {
+  ClampMapping mapping;
+  mapping.deviceCentre = {0, 0, 0.11};
+  DeviceState at;
+  at.position = {0.01, -0.02, 0.11};
+  ClampCommand command = mapDeviceToClamp(at, mapping);
+  EXPECT_NEAR(command.planeX, 0.1, 1e-12);
+  EXPECT_NEAR(command.planeY, -0.2, 1e-12);
+  EXPECT_NEAR(command.opening, mapping.openingAtCentre, 1e-12);
+  at.position.z -= 0.01;  // pushed away from the user: closes
+  EXPECT_NEAR(mapDeviceToClamp(at, mapping).opening, mapping.openingAtCentre - 0.3, 1e-12);
+}
 
 TEST(VirtualCoupling, PullsTheDeviceTowardsTheToolWithinItsLimit) {
   CouplingSettings coupling;  // 3 N/mm, 8 N
