@@ -1,0 +1,204 @@
+// SPDX-License-Identifier: Zlib
+// Copyright (c) 2026 The ThinTool developers
+#include "ClampScene.h"
+
+#include "Metrics.h"
+#include "SoftBallScene.h"
+
+#include <BulletSoftBody/btDefaultSoftBodySolver.h>
+#include <BulletSoftBody/btSoftBodyHelpers.h>
+#include <BulletSoftBody/btSoftRigidDynamicsWorld.h>
+#include <btBulletDynamicsCommon.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace thintool::scenes {
+
+namespace {
+
+// The clamp reaches along +x from a hinge beside the body and closes across z, its jaws standing
+// upright: the handle's y axis (the opening direction) is the world's z, its z axis points down.
+const btQuaternion kHandleOrientation(btVector3(1, 0, 0), btScalar(kPi / 2));
+constexpr double kHingeDistance = 2.3;  // m from the body's centre, along -x
+
+struct Body {
+  btVector3 radii;
+  int resolution;
+};
+
+Body bodyOf(ClampBody kind) {
+  return kind == ClampBody::Sphere ? Body{btVector3(1, 1, 1), 63} : Body{btVector3(1.5, 0.35, 0.35), 120};
+}
+
+// A jaw as the metrics' box, with its y axis pointing away from the tissue.
+ToolBox jawBox(const btTransform& pose, const Vec3& half, bool flip) {
+  ToolBox box;
+  const btMatrix3x3 basis = flip ? pose.getBasis() * btMatrix3x3(btQuaternion(btVector3(1, 0, 0), btScalar(kPi)))
+                                 : pose.getBasis();
+  for (int i = 0; i < 3; ++i) box.rotationRows[i] = {basis[i].x(), basis[i].y(), basis[i].z()};
+  box.origin = {pose.getOrigin().x(), pose.getOrigin().y(), pose.getOrigin().z()};
+  box.halfExtents = {half.x, half.y, half.z};
+  return box;
+}
+
+double meanHeight(const btSoftBody& body) {
+  double sum = 0;
+  for (int i = 0; i < body.m_nodes.size(); ++i) sum += body.m_nodes[i].m_x.y();
+  return sum / body.m_nodes.size();
+}
+
+btVector3 momentum(const btSoftBody& body) {
+  btVector3 p(0, 0, 0);
+  for (int i = 0; i < body.m_nodes.size(); ++i) {
+    if (body.m_nodes[i].m_im > 0) p += body.m_nodes[i].m_v / body.m_nodes[i].m_im;
+  }
+  return p;
+}
+
+double lowest(const btSoftBody& body) {
+  double low = 1e30;
+  for (int i = 0; i < body.m_nodes.size(); ++i) low = std::min(low, double(body.m_nodes[i].m_x.y()));
+  return low;
+}
+
+}  // namespace
+
+const char* clampBodyName(ClampBody body) { return body == ClampBody::Sphere ? "sphere" : "vessel"; }
+
+ClampRun runClamp(const ClampRunSettings& settings) {
+  CollisionConfiguration configuration;
+  btCollisionDispatcher dispatcher(&configuration);
+  btDbvtBroadphase broadphase;
+  btSequentialImpulseConstraintSolver solver;
+  btDefaultSoftBodySolver softSolver;
+  btSoftRigidDynamicsWorld world(&dispatcher, &broadphase, &solver, &configuration, &softSolver);
+  world.setGravity(btVector3(0, -10, 0));
+  btSoftBodyWorldInfo& info = world.getWorldInfo();
+  info.m_gravity = world.getGravity();
+  info.m_sparsesdf.setDefaultVoxelsz(btScalar(0.02));
+  info.m_sparsesdf.Reset();
+
+  btBoxShape groundShape(btVector3(20, 1, 20));
+  btDefaultMotionState groundMotion(btTransform(btQuaternion::getIdentity(), btVector3(0, -1, 0)));
+  btRigidBody ground(btRigidBody::btRigidBodyConstructionInfo(0, &groundMotion, &groundShape));
+  world.addRigidBody(&ground);
+
+  // The baseline's soft material (shared/notes/baseline.md, variant E).
+  const Body shape = bodyOf(settings.body);
+  btSoftBody* body = btSoftBodyHelpers::CreateEllipsoid(info, btVector3(0, shape.radii.y() + 0.3, 0), shape.radii,
+                                                        shape.resolution);
+  body->m_materials[0]->m_kLST = 0.5;
+  body->m_cfg.kDF = 0.5;
+  body->m_cfg.kPR = 50;
+  body->m_cfg.kKHR = 1;
+  body->m_cfg.piterations = 10;
+  body->m_cfg.kDP = btScalar(1 - std::pow(0.95, 60 * settings.timeStep));
+  body->setTotalMass(1);
+  body->getCollisionShape()->setMargin(btScalar(0.05));
+  world.addSoftBody(body);
+
+  const btScalar dt = btScalar(settings.timeStep);
+  auto stepsOf = [&](double seconds) { return std::max(1, static_cast<int>(std::lround(seconds / settings.timeStep))); };
+  for (int i = 0; i < stepsOf(2); ++i) world.stepSimulation(dt, 1, dt);
+
+  ClampRun run;
+  run.restCentreHeight = meanHeight(*body);
+  const double radius = shape.radii.z();  // across the jaws
+  ClampSettings clampSettings;
+  clampSettings.jawHalfExtents = {1.6, 0.01, 0.3};
+  clampSettings.jawOptions.response.friction.enabled = settings.friction;
+  btTransform handle(kHandleOrientation, btVector3(btScalar(-kHingeDistance), btScalar(run.restCentreHeight), 0));
+  const double open = clampSettings.maxOpening;
+  Clamp clamp(world, clampSettings, handle, open);
+  const double closed = 2 * std::atan((1 - settings.squeeze) * radius / kHingeDistance);
+
+  const std::vector<std::array<int, 3>> faces = faceIndices(*body);
+  std::array<CrossingTracker, 2> trackers;
+  auto boxes = [&] {
+    return std::array<ToolBox, 2>{jawBox(clamp.jawBody(0).getWorldTransform(), clampSettings.jawHalfExtents, false),
+                                  jawBox(clamp.jawBody(1).getWorldTransform(), clampSettings.jawHalfExtents, true)};
+  };
+  {
+    const auto b = boxes();
+    for (int j = 0; j < 2; ++j) trackers[j].start(b[j], nodePositions(*body), run.restCentreHeight);
+  }
+
+  struct Phase {
+    const char* name;
+    double seconds;
+  };
+  const Phase phases[] = {{"close", 1.5}, {"settle", 0.5}, {"lift", 1}, {"hold", settings.holdSeconds},
+                          {"release", 0.5}, {"drop", 1.5}};
+  double time = 0;
+  double wallMicroseconds = 0;
+  int steps = 0;
+  double squeezeSum[2] = {0, 0};
+  int squeezeSamples = 0;
+  btVector3 lastMomentum = momentum(*body);
+  for (const Phase& phase : phases) {
+    const int count = stepsOf(phase.seconds);
+    for (int i = 1; i <= count; ++i) {
+      const double s = double(i) / count;
+      const std::string name = phase.name;
+      double opening = clamp.opening();
+      btTransform pose = clamp.handlePose();
+      if (name == "close") opening = open + (closed - open) * s;
+      if (name == "lift") pose.setOrigin(handle.getOrigin() + btVector3(0, btScalar(settings.liftHeight * s), 0));
+      if (name == "release") opening = closed + (open - closed) * s;
+      clamp.setPose(pose, opening);
+      const auto start = std::chrono::steady_clock::now();
+      world.stepSimulation(dt, 1, dt);
+      wallMicroseconds += std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+      ++steps;
+      time += settings.timeStep;
+
+      const ClampForces forces = clamp.forces();
+      ClampSample sample;
+      sample.time = time;
+      sample.phase = name;
+      sample.opening = clamp.opening();
+      sample.grip = forces.grip;
+      sample.onUpperJaw = forces.onJaw[0];
+      sample.onLowerJaw = forces.onJaw[1];
+      sample.onBody = forces.onBody;
+      const btVector3 p = momentum(*body);
+      sample.bodyNetForce = toVec3((p - lastMomentum) / dt - world.getGravity() * body->getTotalMass());
+      lastMomentum = p;
+      sample.bodyLowest = lowest(*body);
+      sample.bodyCentreHeight = meanHeight(*body);
+      const auto b = boxes();
+      const std::vector<Point> nodes = nodePositions(*body);
+      for (int j = 0; j < 2; ++j) {
+        trackers[j].update(b[j], nodes, faces);
+        sample.crossed += trackers[j].metrics().crossed;
+        sample.jawInside = sample.jawInside || trackers[j].metrics().endsInside;
+      }
+      run.crossed = sample.crossed;
+      run.jawEverInside = run.jawEverInside || sample.jawInside;
+      if (name == "hold" && time > 0) {
+        // The hold's last second: the squeeze each jaw feels along the closing axis (world z).
+        const int last = stepsOf(1);
+        if (i > count - last) {
+          squeezeSum[0] += forces.onJaw[0].z;
+          squeezeSum[1] += forces.onJaw[1].z;
+          ++squeezeSamples;
+        }
+        if (i == count) run.liftedCentreHeight = sample.bodyCentreHeight;
+      }
+      run.samples.push_back(sample);
+    }
+  }
+  run.droppedCentreHeight = meanHeight(*body);
+  run.upperSqueeze = squeezeSamples > 0 ? squeezeSum[0] / squeezeSamples : 0;
+  run.lowerSqueeze = squeezeSamples > 0 ? squeezeSum[1] / squeezeSamples : 0;
+  run.microsecondsPerStep = wallMicroseconds / steps;
+
+  world.removeSoftBody(body);
+  delete body;
+  world.removeRigidBody(&ground);
+  return run;
+}
+
+}  // namespace thintool::scenes
