@@ -61,6 +61,7 @@ struct PairState {
   std::vector<Contact> contacts;
   std::vector<NodeCorrection> corrections;
   std::vector<NodeHold> holds;
+  std::vector<Index> excludedNodes[2];  ///< tool nodes excluded by check 1 and by check 2
   DetectionCounters counters;
   Wrench wrench;
   std::vector<FaceForce> faceForces;
@@ -74,6 +75,8 @@ struct PairState {
     contacts.clear();
     corrections.clear();
     holds.clear();
+    excludedNodes[0].clear();
+    excludedNodes[1].clear();
     faceForces.clear();
     counters = DetectionCounters{};
     wrench = Wrench{};

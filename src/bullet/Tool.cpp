@@ -127,6 +127,7 @@ void Tool::captureRestShape(const btSoftBody& softBody) {
 
 const ToolStepReport& Tool::report() {
   m_report.contacts.clear();
+  m_report.excludedNodes.clear();
   m_report.diagnostics = ToolDiagnostics{};
   m_report.wrench = Wrench{};
   ToolForce& contactForce = m_report.contactForce;
@@ -157,6 +158,11 @@ const ToolStepReport& Tool::report() {
     diagnostics.responseMicroseconds += state.responseMicroseconds;
     diagnostics.unsupportedPairs += state.unsupported ? 1 : 0;
     diagnostics.invalidPosePairs += state.invalidPose ? 1 : 0;
+    for (int check = 1; check <= 2; ++check) {
+      for (Index node : state.excludedNodes[check - 1]) {
+        m_report.excludedNodes.push_back({state.softBody, state.piece, node, check});
+      }
+    }
 
     // The piece's wrench is about the piece's origin; move the torque to the body's origin.
     const Pose piecePose = bodyPose * m_pieceTransforms[state.piece];

@@ -281,6 +281,10 @@ void ToolAlgorithm::processValidPiece(PairState& state, btSoftBody& softBody, co
     const SoftBodyRayQuery reverseQuery(softBody, state.traversalStack);
     detectContacts(model, pose, state.patch, &reverseQuery, parameters, state.history, m_tool.m_detectionWorkspace,
                    state.contacts, state.counters);
+    state.excludedNodes[0].assign(m_tool.m_detectionWorkspace.excludedByCheck1().begin(),
+                                  m_tool.m_detectionWorkspace.excludedByCheck1().end());
+    state.excludedNodes[1].assign(m_tool.m_detectionWorkspace.excludedByCheck2().begin(),
+                                  m_tool.m_detectionWorkspace.excludedByCheck2().end());
   }
   const auto detected = Clock::now();
 

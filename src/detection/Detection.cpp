@@ -58,6 +58,10 @@ void DetectionWorkspace::prepare(Index n) {
   m_visited.assign(n, 0);
   m_visitedList.clear();
   m_visitedList.reserve(n);
+  for (std::vector<Index>& excluded : m_excluded) {
+    excluded.clear();
+    excluded.reserve(n);
+  }
 }
 
 void detectContacts(const ToolModel& model, const Pose& toolPose, const SoftPatch& patch,
@@ -70,6 +74,8 @@ void detectContacts(const ToolModel& model, const Pose& toolPose, const SoftPatc
   if (work.m_bestDistance.size() < model.nodeCount()) {
     work.prepare(model.nodeCount());
   }
+  work.m_excluded[0].clear();
+  work.m_excluded[1].clear();
   const Real skin = parameters.skin;
 
   // Soft vertices into the tool's frame, where the rays and their tree are fixed.
@@ -131,6 +137,7 @@ void detectContacts(const ToolModel& model, const Pose& toolPose, const SoftPatc
     ++outCounters.candidates;
     if (useCheck1 && history.isBlocked(node)) {
       ++outCounters.excludedByCheck1;
+      work.m_excluded[0].push_back(node);
       continue;
     }
     const Vec3& normal = model.normals[node];
@@ -141,6 +148,7 @@ void detectContacts(const ToolModel& model, const Pose& toolPose, const SoftPatc
                               orientation;
       if (dot(faceNormal, normal) >= 0) {
         ++outCounters.excludedByCheck2;
+        work.m_excluded[1].push_back(node);
         continue;
       }
       if (useReverseRay) {
@@ -148,6 +156,7 @@ void detectContacts(const ToolModel& model, const Pose& toolPose, const SoftPatc
         const Vec3 delta = toolPose.applyToDirection(normal) * parameters.filters.reverseRayLength;
         if (!reverseQuery->anyHit(from, delta)) {
           ++outCounters.excludedByCheck2;
+          work.m_excluded[1].push_back(node);
           continue;
         }
       }

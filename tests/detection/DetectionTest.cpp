@@ -79,6 +79,10 @@ TEST_F(Fig4Sequence, NoContactThenBottomNodesThenImmersedWithTopNodesExcluded) {
   EXPECT_GT(immersed.pushingDown, 0u);
   EXPECT_EQ(immersed.pushingUp, 0u) << "top nodes must be excluded";
   EXPECT_GT(immersed.counters.excludedByCheck1, 0u);
+  // The nodes themselves, for display: as many as counted, each a node blocked by check 1.
+  const std::vector<Index>& excluded = m_workspace.excludedByCheck1();
+  EXPECT_EQ(excluded.size(), immersed.counters.excludedByCheck1);
+  for (Index node : excluded) EXPECT_LT(node, m_model.nodeCount());
 }
 
 TEST_F(Fig4Sequence, RaysOnlyLetTheTopNodesPushTheCapThroughThePlate) {

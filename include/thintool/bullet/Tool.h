@@ -30,6 +30,14 @@ struct ToolContact {
   Contact contact;
 };
 
+/// A tool node the paper's filters excluded in the latest step (discrete detection only).
+struct ToolExcludedNode {
+  const btSoftBody* softBody = nullptr;
+  Index piece = 0;
+  Index toolNode = kInvalidIndex;
+  int check = 1;  ///< 1 or 2
+};
+
 struct ToolDiagnostics {
   DetectionCounters detection;  ///< summed over the tool's pieces and soft bodies
   Index pairs = 0;              ///< (piece, soft body) pairs processed in the step
@@ -71,6 +79,8 @@ bool removeTool(btCollisionWorld& world, const btRigidBody& body);
 
 struct ToolStepReport {
   std::vector<ToolContact> contacts;
+  /// Nodes whose rays found a face but that check 1 or check 2 excluded.
+  std::vector<ToolExcludedNode> excludedNodes;
   ToolDiagnostics diagnostics;
   /// Force (N) and torque about the tool body's origin (N·m) the response put on the tool: the
   /// reaction of the soft nodes it moved, Σ m·Δx/dt².

@@ -115,6 +115,10 @@ class PairHistory {
 class DetectionWorkspace {
  public:
   void prepare(Index nodeCount);
+  /// The tool nodes the latest detectContacts call excluded by check 1 and by check 2, for
+  /// display (the viewer colours them).
+  const std::vector<Index>& excludedByCheck1() const { return m_excluded[0]; }
+  const std::vector<Index>& excludedByCheck2() const { return m_excluded[1]; }
 
  private:
   friend void detectContacts(const ToolModel&, const Pose&, const SoftPatch&, const SoftSurfaceRayQuery*,
@@ -128,6 +132,7 @@ class DetectionWorkspace {
   std::vector<Real> m_bestV;
   std::vector<std::uint8_t> m_visited;
   std::vector<Index> m_visitedList;
+  std::vector<Index> m_excluded[2];
 };
 
 /// Finds this step's contacts between a tool piece at toolPose and the soft patch, filters them,
