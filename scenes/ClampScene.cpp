@@ -137,6 +137,7 @@ ClampRun runClamp(const ClampRunSettings& settings) {
   double squeezeSum[2] = {0, 0};
   int squeezeSamples = 0;
   btVector3 lastMomentum = momentum(*body);
+  bool stopped = false;
   for (const Phase& phase : phases) {
     const int count = stepsOf(phase.seconds);
     for (int i = 1; i <= count; ++i) {
@@ -188,7 +189,12 @@ ClampRun runClamp(const ClampRunSettings& settings) {
         if (i == count) run.liftedCentreHeight = sample.bodyCentreHeight;
       }
       run.samples.push_back(sample);
+      if (settings.observer && !settings.observer(world, clamp, sample)) {
+        stopped = true;
+        break;
+      }
     }
+    if (stopped) break;
   }
   run.droppedCentreHeight = meanHeight(*body);
   run.upperSqueeze = squeezeSamples > 0 ? squeezeSum[0] / squeezeSamples : 0;

@@ -10,13 +10,18 @@
 
 #include <thintool/thintool.h>
 
+#include <functional>
 #include <string>
 #include <vector>
+
+class btSoftRigidDynamicsWorld;
 
 namespace thintool::scenes {
 
 enum class ClampBody { Sphere, Vessel };
 const char* clampBodyName(ClampBody body);
+
+struct ClampSample;
 
 struct ClampRunSettings {
   ClampBody body = ClampBody::Sphere;
@@ -25,6 +30,8 @@ struct ClampRunSettings {
   double squeeze = 0.2;        ///< how much of the body's width the jaws close past first touch
   double liftHeight = 1;       ///< m the handle rises: half the sphere's diameter
   double holdSeconds = 2;      ///< held up
+  /// Called after every step (a viewer draws the world there); returning false ends the run.
+  std::function<bool(const btSoftRigidDynamicsWorld&, Clamp&, const ClampSample&)> observer;
 };
 
 /// One step of the run: the phase (approach, close, lift, hold, release, drop), the clamp's
