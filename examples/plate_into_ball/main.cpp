@@ -6,8 +6,13 @@
 // It prints one table whose accuracy columns and time column come from the same runs.
 //
 //   plate_into_ball [--tool plate|needle] [--speeds 0.1,1,5,20] [--steps 60,1000]
+//   plate_into_ball [--tool plate|needle] --view                       (the viewer, where built)
+//   plate_into_ball [--tool plate|needle] [--stock] --screenshot FILE.png [--after N]
 
 #include "SoftBallScene.h"
+#ifdef THINTOOL_HAVE_VIEWER
+#include "BallSceneView.h"
+#endif
 
 #include <cstdio>
 #include <cstdlib>
@@ -32,7 +37,10 @@ std::vector<double> parseList(const char* text) {
 
 int usage() {
   std::fprintf(stderr, "usage: plate_into_ball [--tool plate|needle] [--speeds 0.1,1,5,20] [--steps 60,1000]\n"
-                       "  --steps lists time steps as steps per second\n");
+                       "       plate_into_ball [--tool plate|needle] [--stock] --view | --screenshot FILE.png [--after N]\n"
+                       "  --steps lists time steps as steps per second; --view and --screenshot need the viewer\n"
+                       "  (built where GLFW, OpenGL, Dear ImGui and stb are installed); --after: steps before the\n"
+                       "  screenshot (60); --stock: stock Bullet (E) instead of ThinTool\n");
   return 2;
 }
 
@@ -42,6 +50,10 @@ int main(int argc, char** argv) {
   ToolShape shape = ToolShape::Plate;
   std::vector<double> speeds{0.1, 1, 5, 20};
   std::vector<double> rates{60, 1000};
+  bool view = false;
+  bool stock = false;
+  std::string screenshot;
+  int screenshotSteps = 60;
   for (int i = 1; i < argc; ++i) {
     const bool hasValue = i + 1 < argc;
     if (std::strcmp(argv[i], "--tool") == 0 && hasValue) {
@@ -52,9 +64,31 @@ int main(int argc, char** argv) {
       speeds = parseList(argv[++i]);
     } else if (std::strcmp(argv[i], "--steps") == 0 && hasValue) {
       rates = parseList(argv[++i]);
+    } else if (std::strcmp(argv[i], "--view") == 0) {
+      view = true;
+    } else if (std::strcmp(argv[i], "--stock") == 0) {
+      stock = true;
+    } else if (std::strcmp(argv[i], "--screenshot") == 0 && hasValue) {
+      screenshot = argv[++i];
+    } else if (std::strcmp(argv[i], "--after") == 0 && hasValue) {
+      screenshotSteps = std::atoi(argv[++i]);
     } else {
       return usage();
     }
+  }
+  if (view || !screenshot.empty()) {
+#ifdef THINTOOL_HAVE_VIEWER
+    thintool::viewer::BallViewOptions options;
+    options.scene.tool = shape;
+    options.scene.algorithm = stock ? Algorithm::StockE : Algorithm::ThinTool;
+    options.screenshotPath = screenshot;
+    options.screenshotSteps = screenshotSteps;
+    return thintool::viewer::runBallSceneView(options);
+#else
+    std::fprintf(stderr, "plate_into_ball: built without the viewer (install libglfw3-dev libgl-dev libimgui-dev "
+                         "libstb-dev and reconfigure)\n");
+    return 2;
+#endif
   }
 
   std::printf("%s into a 128-face soft ball: stock Bullet 3.24 against ThinTool\n\n", toolShapeName(shape));
