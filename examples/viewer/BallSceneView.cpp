@@ -60,7 +60,8 @@ Overlay overlayOf(Session& session, bool paused) {
     overlay.panelLines.emplace_back("stock Bullet: no ThinTool report");
   }
   overlay.panelLines.emplace_back("nodes: red colliding, orange excluded by check 1, violet by check 2");
-  overlay.panelLines.emplace_back("drag: turn, scroll: zoom, arrows/W/S: tool, space: pause, N: step, T: switch");
+  overlay.panelLines.emplace_back("drag: turn, scroll: zoom, right-drag/arrows/W/S: tool, space: pause, N: step, "
+                                  "T: switch");
   return overlay;
 }
 
@@ -130,7 +131,7 @@ int runBallSceneView(const BallViewOptions& options) {
     if (viewer->keyDown(GLFW_KEY_DOWN)) delta.setZ(move);
     if (viewer->keyDown(GLFW_KEY_W)) delta.setY(move);
     if (viewer->keyDown(GLFW_KEY_S)) delta.setY(-move);
-    session.pose.setOrigin(session.pose.getOrigin() + delta);
+    session.pose.setOrigin(session.pose.getOrigin() + delta + viewer->takeRightDrag(0.005f));
     if (!paused || stepOnce) {
       session.lastStepMicroseconds = session.scene->step(session.pose);
       ++session.steps;

@@ -5,6 +5,7 @@
 // The paper's first scene (scenes/SoftBallScene.h) in the viewer, for the examples' --view and
 // --screenshot modes. Interactive, the keyboard moves the tool (no device needed):
 //   arrows  move it along x and z        W / S   up and down (0.5 m/s held)
+//   right mouse button: drag it horizontally, as seen from the camera
 //   space   pause and resume              N       one step while paused
 //   T       switch stock Bullet (E), the paper's discrete ThinTool and swept ThinTool on the same
 //           scene, the tool where it is

@@ -246,8 +246,23 @@ void Viewer::handleMouse() {
     m_camera.pitch = std::clamp(m_camera.pitch + float(y - m_lastMouseY) * 0.01f, -1.5f, 1.5f);
   }
   m_dragging = down;
+  const bool right = glfwGetMouseButton(m_window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+  if (right && m_rightDragging) {
+    m_rightDragX += x - m_lastMouseX;
+    m_rightDragY += y - m_lastMouseY;
+  }
+  m_rightDragging = right;
   m_lastMouseX = x;
   m_lastMouseY = y;
+}
+
+btVector3 Viewer::takeRightDrag(float metresPerPixel) {
+  // Screen right is the camera's right; screen down comes towards the camera, both horizontal.
+  const btVector3 towardsCamera(std::sin(m_camera.yaw), 0, std::cos(m_camera.yaw));
+  const btVector3 right = btVector3(0, 1, 0).cross(towardsCamera);
+  const btVector3 move = (right * btScalar(m_rightDragX) + towardsCamera * btScalar(m_rightDragY)) * metresPerPixel;
+  m_rightDragX = m_rightDragY = 0;
+  return move;
 }
 
 void Viewer::drawWorld(const btSoftRigidDynamicsWorld& world, const Overlay& overlay) const {

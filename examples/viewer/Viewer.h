@@ -90,6 +90,9 @@ class Viewer {
   const std::vector<int>& keysPressed() const { return m_keysPressed; }
   /// Whether a key is held down now.
   bool keyDown(int key) const;
+  /// How far the mouse was dragged with the right button since the last call (pixels), turned into
+  /// a horizontal move in the world seen from the camera (m), at metresPerPixel.
+  btVector3 takeRightDrag(float metresPerPixel);
 
  private:
   static void onKey(GLFWwindow* window, int key, int scancode, int action, int mods);
@@ -104,6 +107,8 @@ class Viewer {
   std::vector<int> m_keysThisFrame;
   double m_lastMouseX = 0, m_lastMouseY = 0;
   bool m_dragging = false;
+  bool m_rightDragging = false;
+  double m_rightDragX = 0, m_rightDragY = 0;
   double m_lastTime = 0;
   bool m_imgui = false;
 };
