@@ -4,6 +4,7 @@
 
 #include "Metrics.h"
 #include "SoftBallScene.h"
+#include "SoftWorld.h"
 
 #include <BulletSoftBody/btDefaultSoftBodySolver.h>
 #include <BulletSoftBody/btSoftBodyHelpers.h>
@@ -68,15 +69,9 @@ double lowest(const btSoftBody& body) {
 const char* clampBodyName(ClampBody body) { return body == ClampBody::Sphere ? "sphere" : "vessel"; }
 
 ClampRun runClamp(const ClampRunSettings& settings) {
-  CollisionConfiguration configuration;
-  btCollisionDispatcher dispatcher(&configuration);
-  btDbvtBroadphase broadphase;
-  btSequentialImpulseConstraintSolver solver;
-  btDefaultSoftBodySolver softSolver;
-  btSoftRigidDynamicsWorld world(&dispatcher, &broadphase, &solver, &configuration, &softSolver);
-  world.setGravity(btVector3(0, -10, 0));
+  SoftWorld soft;
+  btSoftRigidDynamicsWorld& world = soft.world;
   btSoftBodyWorldInfo& info = world.getWorldInfo();
-  info.m_gravity = world.getGravity();
   info.m_sparsesdf.setDefaultVoxelsz(btScalar(0.02));
   info.m_sparsesdf.Reset();
 

@@ -5,6 +5,7 @@
 // thin sheet in one step, a fast swipe across the ball, a tool reversed and pulled out while inside.
 
 #include "SoftBallScene.h"
+#include "SoftWorld.h"
 
 #include <BulletSoftBody/btDefaultSoftBodySolver.h>
 #include <BulletSoftBody/btSoftBodyHelpers.h>
@@ -23,13 +24,8 @@ namespace {
 // then on for 0.25 m and holds. Returns how many sheet nodes under the plate's footprint end
 // above its underside (the plate went through them).
 int sheetNodesLeftAbove(bool swept) {
-  CollisionConfiguration configuration;
-  btCollisionDispatcher dispatcher(&configuration);
-  btDbvtBroadphase broadphase;
-  btSequentialImpulseConstraintSolver solver;
-  btDefaultSoftBodySolver softSolver;
-  btSoftRigidDynamicsWorld world(&dispatcher, &broadphase, &solver, &configuration, &softSolver);
-  world.setGravity(btVector3(0, 0, 0));
+  SoftWorld soft(btVector3(0, 0, 0));
+  btSoftRigidDynamicsWorld& world = soft.world;
   btSoftBody* sheet = btSoftBodyHelpers::CreatePatch(world.getWorldInfo(), btVector3(-0.5, 1, -0.5),
                                                      btVector3(0.5, 1, -0.5), btVector3(-0.5, 1, 0.5),
                                                      btVector3(0.5, 1, 0.5), 11, 11, 1 + 2 + 4 + 8, true);

@@ -7,6 +7,7 @@
 // jaws' squeezes are equal and opposite.
 
 #include "ClampScene.h"
+#include "SoftWorld.h"
 
 #include <BulletSoftBody/btDefaultSoftBodySolver.h>
 #include <BulletSoftBody/btSoftRigidDynamicsWorld.h>
@@ -19,14 +20,7 @@
 namespace thintool::scenes {
 namespace {
 
-struct World {
-  CollisionConfiguration configuration;
-  btCollisionDispatcher dispatcher{&configuration};
-  btDbvtBroadphase broadphase;
-  btSequentialImpulseConstraintSolver solver;
-  btDefaultSoftBodySolver softSolver;
-  btSoftRigidDynamicsWorld world{&dispatcher, &broadphase, &solver, &configuration, &softSolver};
-};
+using World = SoftWorld;
 
 TEST(Clamp, JawsHingeAboutTheHandleAndTheOpeningStaysInRange) {
   World w;

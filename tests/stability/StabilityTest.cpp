@@ -5,6 +5,7 @@
 // expectation, the paper's force response shown unstable where the default is not, and broken
 // soft meshes skipped and counted without harm to the world.
 
+#include "SoftWorld.h"
 #include "StressCases.h"
 
 #include <BulletSoftBody/btDefaultSoftBodySolver.h>
@@ -74,14 +75,8 @@ TEST(Stability, ANonFiniteToolPoseIsSkippedCountedAndTheTissueStaysHeld) {
 // position is NaN cannot be tested here: Bullet's soft body bounds become NaN and its broadphase
 // never pairs the body with anything; DetectionTest covers such faces in the core.)
 TEST(Stability, BrokenSoftFacesAreSkippedAndCounted) {
-  CollisionConfiguration configuration;
-  btCollisionDispatcher dispatcher(&configuration);
-  btDbvtBroadphase broadphase;
-  btSequentialImpulseConstraintSolver solver;
-  btDefaultSoftBodySolver softSolver;
-  btSoftRigidDynamicsWorld world(&dispatcher, &broadphase, &solver, &configuration, &softSolver);
-  world.setGravity(btVector3(0, 0, 0));
-  world.getWorldInfo().m_gravity = btVector3(0, 0, 0);
+  SoftWorld soft(btVector3(0, 0, 0));
+  btSoftRigidDynamicsWorld& world = soft.world;
 
   constexpr int kSide = 9;
   std::vector<btVector3> positions;
