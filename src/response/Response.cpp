@@ -241,7 +241,7 @@ void computeResponse(const ToolModel& model, const Pose& toolPose, const Pose& p
 }
 
 void computeHolds(const ToolModel& model, const Pose& toolPose, const SoftPatch& patch, Real skin,
-                  const std::vector<NodeCorrection>& corrections, bool holdUnmoved, ResponseWorkspace& work,
+                  const std::vector<NodeCorrection>& corrections, bool holdAtToolFaces, ResponseWorkspace& work,
                   std::vector<NodeHold>& outHolds) {
   outHolds.clear();
   if (work.m_moved.size() < patch.vertexCount()) {
@@ -251,7 +251,7 @@ void computeHolds(const ToolModel& model, const Pose& toolPose, const SoftPatch&
     const Vec3 at = patch.positions[correction.vertex] + correction.displacement;
     outHolds.push_back({correction.vertex, correction.normal, -dot(correction.normal, at), correction.sticks});
   }
-  if (!holdUnmoved) {
+  if (!holdAtToolFaces) {
     return;
   }
   for (const NodeCorrection& correction : corrections) {

@@ -6,7 +6,7 @@
 /// What the soft body does about this step's contacts.
 ///
 /// - ResponseKind::Constraint (default): a position projection after position-based dynamics
-///   (Müller et al., "Position based dynamics", 2007), in three passes:
+///   (Müller et al., "Position based dynamics", 2007), in four passes, and friction:
 ///   1. every soft node of a hit face that lies inside the tool (its faces' planes moved out by
 ///      the skin) leaves through the entry plane of one of its face's contacts, the one it is
 ///      least behind: never across the tool, never out of its far side;
@@ -18,7 +18,11 @@
 ///      move is shared by the face's nodes in proportion to barycentric weight × inverse mass, the
 ///      smallest mass-weighted move that does it, so a needle pressing the middle of a large face
 ///      moves the face and a node far from the hit point moves little. Contacts are swept in order
-///      (Gauss–Seidel) until every hit point is out.
+///      (Gauss–Seidel) until every hit point is out;
+///   4. no move may end inside the tool: pass 3 moves a face's nodes along the face's normal, which
+///      near a rim can carry one into the tool from a side no contact speaks for; such a node
+///      leaves through the face it was outside of at the start of the step, as in pass 2;
+///   then, when FrictionSettings::enabled, Coulomb friction on the moved nodes (see there).
 ///   A projection has no stiffness and no time-step limit: the nodes are where they must be at the
 ///   end of the step, and their velocities follow from the move. The equivalent force on the tool
 ///   is Σ m·Δx/dt². The glue then asks the soft solver to hold the moved nodes (see
@@ -124,14 +128,15 @@ void computeResponse(const ToolModel& model, const Pose& toolPose, const Pose& p
 
 /// The planes that keep the soft solver from undoing the response, or from dragging a node through
 /// the tool while it repairs a deformed body: each moved node keeps the plane it was moved onto
-/// (along its correction's normal, through where it now is). With holdUnmoved, each other movable
-/// node of the patch keeps the plane of the tool face it is farthest in front of (grown by the
-/// skin), which separates it from the tool; chosen anew each step, it still lets a node wrap
+/// (along its correction's normal, through where it now is). With holdAtToolFaces, every movable node
+/// of the patch outside the tool grown by the skin, moved or not, also keeps the plane of the tool
+/// face it is farthest in front of, which separates it from the tool (a moved node's own plane may
+/// be a soft face's, across the tool's face); chosen anew each step, it still lets a node wrap
 /// around a rim over several steps. Ask for it only where every node is known to be on its own
 /// side of the tool, as after swept detection: a node that slipped through unseen would be held
 /// on the wrong side.
 void computeHolds(const ToolModel& model, const Pose& toolPose, const SoftPatch& patch, Real skin,
-                  const std::vector<NodeCorrection>& corrections, bool holdUnmoved, ResponseWorkspace& workspace,
+                  const std::vector<NodeCorrection>& corrections, bool holdAtToolFaces, ResponseWorkspace& workspace,
                   std::vector<NodeHold>& outHolds);
 
 }  // namespace thintool
