@@ -28,6 +28,11 @@ struct Clamp::Parts {
 
 namespace {
 
+// The handle reaches back from the hinge, its centre half a jaw's length behind it.
+btTransform handleBodyPose(const btTransform& handlePose, const Vec3& jawHalfExtents) {
+  return handlePose * btTransform(btQuaternion::getIdentity(), btVector3(-btScalar(jawHalfExtents.x), 0, 0));
+}
+
 std::unique_ptr<btRigidBody> kinematicBody(btMotionState& motion, btCollisionShape& shape) {
   auto body = std::make_unique<btRigidBody>(btRigidBody::btRigidBodyConstructionInfo(0, &motion, &shape));
   body->setCollisionFlags(body->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
@@ -72,9 +77,8 @@ Clamp::Clamp(btSoftRigidDynamicsWorld& world, const ClampSettings& settings, con
       throw;
     }
   }
-  // The handle reaches back from the hinge and collides with nothing (mask 0).
-  m_parts->handleMotion.setWorldTransform(handlePose * btTransform(btQuaternion::getIdentity(),
-                                                                   btVector3(-btScalar(half.x), 0, 0)));
+  // The handle collides with nothing (mask 0).
+  m_parts->handleMotion.setWorldTransform(handleBodyPose(handlePose, half));
   m_parts->handle = kinematicBody(m_parts->handleMotion, m_parts->handleShape);
   m_handle = m_parts->handle.get();
   world.addRigidBody(m_handle, 0, 0);
@@ -95,7 +99,8 @@ btTransform Clamp::jawPose(int i, const btTransform& handlePose, Real opening) c
   // passes through the hinge.
   const btQuaternion turn(btVector3(0, 0, 1), side * btScalar(opening / 2));
   const btTransform hinge(turn, btVector3(0, 0, 0));
-  return handlePose * hinge * btTransform(btQuaternion::getIdentity(), btVector3(btScalar(half.x), side * btScalar(half.y), 0));
+  const btTransform alongJaw(btQuaternion::getIdentity(), btVector3(btScalar(half.x), side * btScalar(half.y), 0));
+  return handlePose * hinge * alongJaw;
 }
 
 void Clamp::setPose(const btTransform& handlePose, Real opening) {
@@ -104,8 +109,7 @@ void Clamp::setPose(const btTransform& handlePose, Real opening) {
   for (int i = 0; i < 2; ++i) {
     m_parts->jawMotion[i].setWorldTransform(jawPose(i, handlePose, m_opening));
   }
-  m_parts->handleMotion.setWorldTransform(
-      handlePose * btTransform(btQuaternion::getIdentity(), btVector3(-btScalar(m_settings.jawHalfExtents.x), 0, 0)));
+  m_parts->handleMotion.setWorldTransform(handleBodyPose(handlePose, m_settings.jawHalfExtents));
 }
 
 ClampForces Clamp::forces() {

@@ -26,6 +26,22 @@ Real outsideDistance(const ToolModel& model, const Vec3& local, Index* outPlane 
   return best;
 }
 
+// How far a node now at position lies inside the tool grown by the skin, measured from the face
+// it was outside of at the start of the step (at previousPosition, in the tool's previous pose),
+// with that face's normal in the world: the move that sends it back out the side it came from.
+// Not positive when the node is outside.
+Real depthBehindEntryFace(const ToolModel& model, const Pose& toolPose, const Pose& previousToolPose,
+                          const Vec3& previousPosition, const Vec3& position, Real skin, Vec3& outNormal) {
+  const Vec3 local = toolPose.applyInverse(position);
+  if (outsideDistance(model, local) >= skin) {
+    return 0;
+  }
+  Index entry = 0;
+  outsideDistance(model, previousToolPose.applyInverse(previousPosition), &entry);
+  outNormal = toolPose.applyToDirection(model.planes[entry].normal);
+  return skin - model.planes[entry].signedDistance(local);
+}
+
 // Friction for each moved node (FrictionSettings). The tool's surface motion at a node is that of
 // the tool point where the node now is, from the previous pose to this one.
 void applyFriction(const FrictionSettings& friction, const Pose& toolPose, const Pose& previousToolPose,
@@ -139,15 +155,9 @@ void computeResponse(const ToolModel& model, const Pose& toolPose, const Pose& p
         if (work.m_slot[vertex] != kInvalidIndex || !movable(vertex)) {
           continue;
         }
-        const Real outside = outsideDistance(model, toolPose.applyInverse(patch.positions[vertex]));
-        if (outside >= skin) {
-          continue;
-        }
-        // The face it was outside of at the start of the step, in the tool's previous pose.
-        Index entry = 0;
-        outsideDistance(model, previousToolPose.applyInverse(patch.previousPositions[vertex]), &entry);
-        const Vec3 normal = toolPose.applyToDirection(model.planes[entry].normal);
-        const Real depth = skin - model.planes[entry].signedDistance(toolPose.applyInverse(patch.positions[vertex]));
+        Vec3 normal;
+        const Real depth = depthBehindEntryFace(model, toolPose, previousToolPose, patch.previousPositions[vertex],
+                                                patch.positions[vertex], skin, normal);
         if (!(depth > 0)) {
           continue;
         }
@@ -201,31 +211,23 @@ void computeResponse(const ToolModel& model, const Pose& toolPose, const Pose& p
         break;
       }
     }
-  }
 
-  if (settings.kind == ResponseKind::Constraint) {
     // Pass 4: a face's contact moves its nodes along the face's normal, which near a rim can carry
-    // a node into the tool from a side no contact speaks for. Such a node leaves again through the
-    // face it was outside of at the start of the step, judged in the tool's previous pose.
+    // a node into the tool from a side no contact speaks for. Such a node leaves again as in pass 2.
     for (NodeCorrection& correction : outCorrections) {
       const Index vertex = correction.vertex;
-      const Vec3 local = toolPose.applyInverse(work.m_positions[vertex]);
-      if (outsideDistance(model, local) >= skin) {
-        continue;
-      }
-      Index entry = 0;
-      outsideDistance(model, previousToolPose.applyInverse(patch.previousPositions[vertex]), &entry);
-      const Real depth = skin - model.planes[entry].signedDistance(local);
+      Vec3 normal;
+      const Real depth = depthBehindEntryFace(model, toolPose, previousToolPose, patch.previousPositions[vertex],
+                                              work.m_positions[vertex], skin, normal);
       if (depth > 0) {
-        const Vec3 normal = toolPose.applyToDirection(model.planes[entry].normal);
         work.m_positions[vertex] += normal * depth;
         correction.normal = normal;
       }
     }
-  }
 
-  if (settings.kind == ResponseKind::Constraint && settings.friction.enabled) {
-    applyFriction(settings.friction, toolPose, previousToolPose, patch, work.m_positions, outCorrections);
+    if (settings.friction.enabled) {
+      applyFriction(settings.friction, toolPose, previousToolPose, patch, work.m_positions, outCorrections);
+    }
   }
 
   // Displacements, the reaction on the tool, and the slots cleared for the next call.
