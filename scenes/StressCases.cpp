@@ -26,13 +26,10 @@ std::string format(const char* pattern, double value) {
 
 std::string stepName(double dt) { return format("dt 1/%.0f s", 1 / dt); }
 
-bool finite(const btVector3& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
-
-bool finite(const btTransform& t) {
-  return finite(t.getOrigin()) && finite(t.getBasis()[0]) && finite(t.getBasis()[1]) && finite(t.getBasis()[2]);
-}
-
-bool finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+// The core's finiteness tests, on Bullet's types through the glue's conversions.
+bool finite(const btVector3& v) { return isFinite(toVec3(v)); }
+bool finite(const btTransform& t) { return isFinite(toPose(t)); }
+bool finite(const Vec3& v) { return isFinite(v); }
 
 bool sceneIsFinite(SoftBallScene& scene) {
   const btSoftBody& ball = scene.ball();

@@ -56,17 +56,12 @@ int view(ClampBody body, const std::string& screenshotPath) {
     overlay.panelLines.emplace_back(line);
     std::snprintf(line, sizeof line, "grip %.1f N, body %.2f m up", sample.grip, sample.bodyCentreHeight);
     overlay.panelLines.emplace_back(line);
-    const bool shoot = !screenshotPath.empty() && sample.time >= 3.5;
-    // A panel that fits its text takes a frame to learn its size: draw the first frames twice.
-    for (int pass = 0; pass < (shoot ? 3 : 1); ++pass) {
-      window->render(world, overlay);
-      if (shoot && pass == 2) {
-        written = window->screenshot(screenshotPath);
-        return false;
-      }
-      if (!window->present()) return false;
+    if (!screenshotPath.empty()) {
+      if (sample.time < 3.5) return true;  // lifted and held by then
+      written = window->renderToFile(world, overlay, screenshotPath);
+      return false;
     }
-    return true;
+    return window->frame(world, overlay);
   };
   runClamp(run);
   if (!screenshotPath.empty()) {

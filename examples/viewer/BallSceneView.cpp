@@ -90,13 +90,7 @@ int runBallSceneView(const BallViewOptions& options) {
       session.lastStepMicroseconds = session.scene->step(session.pose);
       ++session.steps;
     }
-    // A panel that fits its text takes a frame to learn its size.
-    for (int warmUp = 0; warmUp < 2; ++warmUp) {
-      viewer->render(session.scene->world(), overlayOf(session, false));
-      viewer->present();
-    }
-    viewer->render(session.scene->world(), overlayOf(session, false));
-    if (!viewer->screenshot(options.screenshotPath)) {
+    if (!viewer->renderToFile(session.scene->world(), overlayOf(session, false), options.screenshotPath)) {
       std::fprintf(stderr, "viewer: cannot write %s\n", options.screenshotPath.c_str());
       return 1;
     }

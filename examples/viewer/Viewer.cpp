@@ -394,6 +394,15 @@ void Viewer::render(const btSoftRigidDynamicsWorld& world, const Overlay& overla
   glFinish();
 }
 
+bool Viewer::renderToFile(const btSoftRigidDynamicsWorld& world, const Overlay& overlay, const std::string& path) {
+  for (int settle = 0; settle < 2; ++settle) {
+    render(world, overlay);
+    present();
+  }
+  render(world, overlay);
+  return screenshot(path);
+}
+
 bool Viewer::present() {
   glfwSwapBuffers(m_window);
   glfwPollEvents();

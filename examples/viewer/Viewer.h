@@ -75,6 +75,9 @@ class Viewer {
   /// Writes the frame render() drew to a PNG file; false if it could not be written. Call it
   /// before present().
   bool screenshot(const std::string& path) const;
+  /// Draws world and overlay and writes the frame to a PNG file: the screenshot modes' one call.
+  /// A panel that fits its text takes a frame to learn its size, so the frame is drawn three times.
+  bool renderToFile(const btSoftRigidDynamicsWorld& world, const Overlay& overlay, const std::string& path);
   /// Shows the frame and reads input; returns false once the window was asked to close.
   bool present();
   /// render() and present().
