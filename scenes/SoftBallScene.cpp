@@ -18,14 +18,9 @@ namespace {
 constexpr double kParkedHeight = 50;   // m: where the tool waits while the ball settles
 constexpr double kStartClearance = 0.1;  // m above the soft margin over the ball's top
 
-struct Variant {
-  double margin;
-  double kKHR;
-  int positionIterations;
-  double voxel;
-};
+}  // namespace
 
-Variant variantOf(Algorithm algorithm) {
+SoftVariant softVariantOf(Algorithm algorithm) {
   switch (algorithm) {
     case Algorithm::StockA:
       return {0.25, 0.1, 1, 0.25};
@@ -38,8 +33,6 @@ Variant variantOf(Algorithm algorithm) {
   }
   return {0.05, 1, 10, 0.02};
 }
-
-}  // namespace
 
 const char* algorithmName(Algorithm algorithm) {
   switch (algorithm) {
@@ -87,7 +80,7 @@ struct SoftBallScene::Bullet {
 
 SoftBallScene::SoftBallScene(const SceneSettings& settings) : m_settings(settings), m_bullet(new Bullet) {
   Bullet& b = *m_bullet;
-  const Variant variant = variantOf(settings.algorithm);
+  const SoftVariant variant = softVariantOf(settings.algorithm);
   const bool thinTool = settings.algorithm == Algorithm::ThinTool || settings.algorithm == Algorithm::ThinToolPaper;
   if (thinTool) {
     b.configuration = std::make_unique<thintool::CollisionConfiguration>();

@@ -35,6 +35,15 @@ enum class Algorithm {
 };
 const char* algorithmName(Algorithm algorithm);
 
+/// The soft-body settings baseline.md's variants differ in; ThinTool's runs use E's.
+struct SoftVariant {
+  double margin;           ///< m, the soft body's collision margin
+  double kKHR;             ///< kinetic contact hardness
+  int positionIterations;
+  double voxel;            ///< m, the sparse SDF's voxel
+};
+SoftVariant softVariantOf(Algorithm algorithm);
+
 enum class ToolShape {
   Plate,       ///< 0.8 × 0.02 × 0.8 m, thin along y
   Needle,      ///< a bar 1.0 × 0.02 × 0.02 m along x
