@@ -1,0 +1,127 @@
+// SPDX-License-Identifier: Zlib
+// Copyright (c) 2026 The ThinTool developers
+#pragma once
+
+/// @file
+/// Ground truth for the evaluation suite, from positions alone: it never calls ThinTool's
+/// detection, tool model or response, so that it judges stock Bullet and ThinTool by the same
+/// rule. It works on the tool's exact convex pieces (a box, or a hull's own triangles) and the soft
+/// body's surface as Bullet holds it after each step.
+///
+/// - Penetration: the exact signed distance from soft-surface samples (every node and every face's
+///   centroid) to each convex piece; a sample inside a piece penetrates by minus that distance.
+/// - Crossing: a node crosses when, between two steps and in the piece's frame, it passes the
+///   piece's mid-surface (the plane through the piece's centre across its thinnest axis) at a point
+///   inside the piece. A node pushed round the tool's rim never counts; one that went through does,
+///   however far it went.
+/// - Tool inside: the centre of a piece lies inside the closed soft surface, by the generalised
+///   winding number (Jacobson et al. 2013), which, unlike ray parity, has no unlucky directions.
+
+#include <thintool/core/Math.h>
+
+#include <array>
+#include <vector>
+
+namespace thintool::eval {
+
+using Triangle = std::array<int, 3>;
+
+/// A closed convex triangle mesh in its own frame, counter-clockwise seen from outside.
+struct ConvexSolid {
+  std::vector<Vec3> vertices;
+  std::vector<Triangle> triangles;
+
+  static ConvexSolid box(const Vec3& halfExtents);
+};
+
+/// Distance queries against one convex solid. Throws thintool::Error when the mesh is not a closed
+/// convex solid with finite coordinates.
+class SolidDistance {
+ public:
+  explicit SolidDistance(ConvexSolid solid);
+
+  /// Negative inside: minus the depth to the nearest face plane; outside: the exact distance to
+  /// the nearest triangle.
+  double signedDistance(const Vec3& local) const;
+  /// The centre of the solid's bounding box, its half extents, and its thinnest axis (0, 1 or 2).
+  const Vec3& centre() const { return m_centre; }
+  const Vec3& halfExtents() const { return m_halfExtents; }
+  int thinAxis() const { return m_thinAxis; }
+  /// No point farther than this from centre() is inside the solid.
+  double boundingRadius() const { return m_radius; }
+  const ConvexSolid& solid() const { return m_solid; }
+
+ private:
+  ConvexSolid m_solid;
+  std::vector<Vec3> m_normals;   // unit, outward
+  std::vector<double> m_offsets;  // n·x = offset on the face
+  Vec3 m_centre;
+  Vec3 m_halfExtents;
+  int m_thinAxis = 1;
+  double m_radius = 0;  // of the bounding sphere about m_centre
+};
+
+/// Squared distance from p to triangle (a, b, c), exact for any triangle, degenerate ones included.
+double distanceSquaredToTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
+
+/// The generalised winding number of a closed surface about p: 1 inside, 0 outside, whatever the
+/// surface's orientation (its sign follows it; callers compare |w| with 0.5).
+double windingNumber(const Vec3& p, const std::vector<Vec3>& vertices, const std::vector<Triangle>& triangles);
+
+/// A tool's convex piece placed in the tool's frame.
+struct GroundTruthPiece {
+  SolidDistance solid;
+  Pose inTool;    ///< the piece's frame relative to the tool body
+  int tool = 0;   ///< which of the scene's tools it belongs to
+};
+
+/// What the ground truth saw after one step.
+struct GroundTruthStep {
+  int crossings = 0;          ///< nodes that passed through a tool this step
+  bool toolInside = false;    ///< a piece's centre is inside the closed soft surface
+  double maxPenetration = 0;  ///< m, deepest surface sample inside a tool
+  double sumSquaredPenetration = 0;  ///< m², over the penetrating samples
+  int penetratingSamples = 0;
+};
+
+/// What it saw over a run.
+struct GroundTruthRun {
+  int steps = 0;
+  int crossedNodes = 0;       ///< distinct nodes that passed through a tool at least once
+  int stillCrossed = 0;       ///< of those, at the end on the far side of the first piece they crossed, within it
+  int toolInsideSteps = 0;
+  bool endsInside = false;
+  double maxPenetration = 0;  ///< m
+  double rmsPenetration = 0;  ///< m, over every penetrating sample of every step (0 when none)
+};
+
+/// Follows a soft surface against a scene's tools step by step.
+class GroundTruth {
+ public:
+  /// closedSurface: whether the soft surface encloses a volume (a sheet does not: no tool-inside).
+  GroundTruth(std::vector<GroundTruthPiece> pieces, bool closedSurface);
+
+  /// The state before the first step: toolPoses[t] is tool t's body pose.
+  void start(const std::vector<Pose>& toolPoses, const std::vector<Vec3>& nodes, const std::vector<Triangle>& faces);
+  const GroundTruthStep& update(const std::vector<Pose>& toolPoses, const std::vector<Vec3>& nodes,
+                                const std::vector<Triangle>& faces);
+  const GroundTruthStep& lastStep() const { return m_step; }
+  GroundTruthRun run() const;
+
+ private:
+  void measurePenetration(const Vec3& world, const std::vector<Pose>& piecePoses);
+  std::vector<Pose> piecePoses(const std::vector<Pose>& toolPoses) const;
+
+  std::vector<GroundTruthPiece> m_pieces;
+  bool m_closedSurface;
+  std::vector<Pose> m_previousPoses;
+  std::vector<Vec3> m_previousNodes;
+  std::vector<int> m_crossedPiece;   // per node: the first piece it went through, or -1
+  std::vector<signed char> m_sideBeforeCrossing;  // per node: its side of that piece before
+  GroundTruthStep m_step;
+  GroundTruthRun m_run;
+  double m_sumSquared = 0;
+  long m_samples = 0;
+};
+
+}  // namespace thintool::eval

@@ -1,0 +1,148 @@
+// SPDX-License-Identifier: Zlib
+// Copyright (c) 2026 The ThinTool developers
+//
+// The evaluation suite's ground truth: exact distances to convex pieces, the winding number, and
+// crossings counted only for nodes that pass through a piece.
+
+#include <GroundTruth.h>
+
+#include <thintool/core/Error.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace thintool::eval {
+namespace {
+
+const Vec3 kPlateHalf{0.4, 0.01, 0.4};
+
+TEST(GroundTruth, BoxSignedDistanceIsExactInsideAndOutside) {
+  const SolidDistance plate(ConvexSolid::box(kPlateHalf));
+  EXPECT_EQ(plate.thinAxis(), 1);
+  EXPECT_NEAR(plate.signedDistance({0, 0, 0}), -0.01, 1e-15);
+  EXPECT_NEAR(plate.signedDistance({0.395, 0.002, 0}), -0.005, 1e-15);  // nearer the rim than the faces
+  EXPECT_NEAR(plate.signedDistance({0, 0.31, 0}), 0.3, 1e-15);
+  // Beyond a corner the nearest point is the corner itself, not a face plane.
+  EXPECT_NEAR(plate.signedDistance({0.7, 0.41, 0.4}), std::sqrt(0.3 * 0.3 + 0.4 * 0.4), 1e-12);
+}
+
+TEST(GroundTruth, TriangleDistanceHandlesEveryRegionAndDegenerateTriangles) {
+  const Vec3 a{0, 0, 0}, b{1, 0, 0}, c{0, 1, 0};
+  EXPECT_NEAR(distanceSquaredToTriangle({0.2, 0.2, 0.5}, a, b, c), 0.25, 1e-15);   // above the face
+  EXPECT_NEAR(distanceSquaredToTriangle({0.5, -1, 0}, a, b, c), 1, 1e-15);         // beside an edge
+  EXPECT_NEAR(distanceSquaredToTriangle({-1, -1, 0}, a, b, c), 2, 1e-15);          // beyond a vertex
+  // Collinear corners: the distance to the segment they span.
+  EXPECT_NEAR(distanceSquaredToTriangle({0.5, 1, 0}, a, b, {2, 0, 0}), 1, 1e-15);
+  EXPECT_NEAR(distanceSquaredToTriangle({3, 0, 0}, a, a, a), 9, 1e-15);
+}
+
+TEST(GroundTruth, WindingNumberIsOneInsideZeroOutsideAndFollowsOrientation) {
+  const ConvexSolid cube = ConvexSolid::box({1, 1, 1});
+  const double inside = windingNumber({0.3, -0.2, 0.9}, cube.vertices, cube.triangles);
+  EXPECT_NEAR(std::abs(inside), 1, 1e-12);
+  EXPECT_NEAR(windingNumber({1.5, 0, 0}, cube.vertices, cube.triangles), 0, 1e-12);
+  std::vector<Triangle> flipped = cube.triangles;
+  for (Triangle& t : flipped) std::swap(t[1], t[2]);
+  EXPECT_NEAR(windingNumber({0.3, -0.2, 0.9}, cube.vertices, flipped), -inside, 1e-12);
+}
+
+TEST(GroundTruth, RejectsPiecesThatAreNotConvexSolids) {
+  ConvexSolid dented = ConvexSolid::box({1, 1, 1});
+  dented.vertices[7] = {0.2, 0.2, 0.2};  // a corner pushed inside
+  EXPECT_THROW(SolidDistance{dented}, Error);
+  ConvexSolid flat = ConvexSolid::box({1, 1, 1});
+  for (Vec3& v : flat.vertices) v.y = 0;
+  EXPECT_THROW(SolidDistance{flat}, Error);
+  ConvexSolid broken = ConvexSolid::box({1, 1, 1});
+  broken.vertices[0].x = std::nan("");
+  EXPECT_THROW(SolidDistance{broken}, Error);
+  ConvexSolid badIndex = ConvexSolid::box({1, 1, 1});
+  badIndex.triangles[3][1] = 8;
+  EXPECT_THROW(SolidDistance{badIndex}, Error);
+}
+
+Pose at(double x, double y, double z) {
+  Pose pose;
+  pose.translation = {x, y, z};
+  return pose;
+}
+
+// A lone node, sampled as a one-node "surface": crossings and penetration without any soft body.
+GroundTruth plateTruth() {
+  std::vector<GroundTruthPiece> pieces;
+  pieces.push_back({SolidDistance(ConvexSolid::box(kPlateHalf)), Pose{}, 0});
+  return GroundTruth(std::move(pieces), false);
+}
+
+TEST(GroundTruth, CountsANodeThePlatePassesThroughInOneStep) {
+  GroundTruth truth = plateTruth();
+  truth.start({at(0, 1, 0)}, {{0.1, 0.5, 0.1}}, {});
+  // The plate jumps from above the node to 0.3 m below it: no sample of the end state shows it.
+  const GroundTruthStep& step = truth.update({at(0, 0.2, 0)}, {{0.1, 0.5, 0.1}}, {});
+  EXPECT_EQ(step.crossings, 1);
+  EXPECT_EQ(step.maxPenetration, 0);
+  const GroundTruthRun run = truth.run();
+  EXPECT_EQ(run.crossedNodes, 1);
+  EXPECT_EQ(run.stillCrossed, 1);
+}
+
+TEST(GroundTruth, ANodeBesideTheFootprintOrPushedRoundTheRimDoesNotCross) {
+  GroundTruth truth = plateTruth();
+  truth.start({at(0, 1, 0)}, {{0.45, 0.5, 0}, {0.35, 0.9, 0}}, {});
+  // The plate passes the first node, beside it. The second, under the plate near its rim, is
+  // pushed out past the rim, then rises above the plate's level there: it went round, not through.
+  truth.update({at(0, 0.95, 0)}, {{0.45, 0.5, 0}, {0.45, 0.9, 0}}, {});
+  truth.update({at(0, 0.3, 0)}, {{0.45, 0.5, 0}, {0.45, 1.0, 0}}, {});
+  const GroundTruthRun run = truth.run();
+  EXPECT_EQ(run.crossedNodes, 0);
+  EXPECT_EQ(run.stillCrossed, 0);
+}
+
+TEST(GroundTruth, ANodeThatCrossedAndCameBackIsNotStillCrossed) {
+  GroundTruth truth = plateTruth();
+  truth.start({at(0, 1, 0)}, {{0, 0.5, 0}}, {});
+  truth.update({at(0, 0.3, 0)}, {{0, 0.5, 0}}, {});
+  truth.update({at(0, 0.7, 0)}, {{0, 0.5, 0}}, {});
+  const GroundTruthRun run = truth.run();
+  EXPECT_EQ(run.crossedNodes, 1);
+  EXPECT_EQ(run.stillCrossed, 0);
+}
+
+TEST(GroundTruth, PenetrationIsTheDepthOfTheDeepestSampleAndItsRms) {
+  GroundTruth truth = plateTruth();
+  truth.start({at(0, 0, 0)}, {{0, 0.5, 0}, {0.2, 0.5, 0}, {0, 0.5, 0.1}}, {});
+  // Three nodes, each 7 mm into the 10 mm half thickness from above, 3 mm deep; their face's
+  // centroid too.
+  const std::vector<Vec3> nodes{{0, 0.007, 0}, {0.2, 0.007, 0}, {0, 0.007, 0.1}};
+  const GroundTruthStep& step = truth.update({at(0, 0, 0)}, nodes, {{0, 1, 2}});
+  EXPECT_NEAR(step.maxPenetration, 0.003, 1e-12);
+  EXPECT_EQ(step.penetratingSamples, 4);
+  EXPECT_NEAR(truth.run().rmsPenetration, 0.003, 1e-12);
+}
+
+TEST(GroundTruth, ToolInsideAClosedSurfaceIsSeen) {
+  const ConvexSolid ball = ConvexSolid::box({1, 1, 1});  // a closed soft surface, as a cube
+  std::vector<GroundTruthPiece> pieces;
+  pieces.push_back({SolidDistance(ConvexSolid::box(kPlateHalf)), Pose{}, 0});
+  GroundTruth truth(std::move(pieces), true);
+  truth.start({at(0, 3, 0)}, ball.vertices, ball.triangles);
+  EXPECT_FALSE(truth.update({at(0, 2, 0)}, ball.vertices, ball.triangles).toolInside);
+  EXPECT_TRUE(truth.update({at(0, 0.5, 0)}, ball.vertices, ball.triangles).toolInside);
+  const GroundTruthRun run = truth.run();
+  EXPECT_EQ(run.toolInsideSteps, 1);
+  EXPECT_TRUE(run.endsInside);
+}
+
+TEST(GroundTruth, CompoundPiecesAreMeasuredInTheirOwnFrames) {
+  // Two halves side by side in the tool's frame; a node between them passes through neither.
+  std::vector<GroundTruthPiece> pieces;
+  pieces.push_back({SolidDistance(ConvexSolid::box({0.2, 0.01, 0.4})), at(-0.3, 0, 0), 0});
+  pieces.push_back({SolidDistance(ConvexSolid::box({0.2, 0.01, 0.4})), at(0.3, 0, 0), 0});
+  GroundTruth truth(std::move(pieces), false);
+  truth.start({at(0, 1, 0)}, {{0, 0.5, 0}, {0.3, 0.5, 0}}, {});
+  EXPECT_EQ(truth.update({at(0, 0, 0)}, {{0, 0.5, 0}, {0.3, 0.5, 0}}, {}).crossings, 1);
+}
+
+}  // namespace
+}  // namespace thintool::eval
