@@ -1,0 +1,323 @@
+// SPDX-License-Identifier: Zlib
+// Copyright (c) 2026 The ThinTool developers
+#include "Runner.h"
+
+#include <SoftBallScene.h>
+
+#include <thintool/core/Error.h>
+#include <thintool/thintool.h>
+
+#include <BulletSoftBody/btDefaultSoftBodySolver.h>
+#include <BulletSoftBody/btSoftBodyHelpers.h>
+#include <BulletSoftBody/btSoftBodyRigidBodyCollisionConfiguration.h>
+#include <BulletSoftBody/btSoftRigidDynamicsWorld.h>
+#include <btBulletDynamicsCommon.h>
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <memory>
+
+namespace thintool::eval {
+
+namespace {
+
+constexpr double kParkedAbove = 50;  // m: tools wait this far above their start while the body settles
+
+scenes::Algorithm baselineAlgorithmOf(AlgorithmKind kind) {
+  switch (kind) {
+    case AlgorithmKind::StockA: return scenes::Algorithm::StockA;
+    case AlgorithmKind::StockB: return scenes::Algorithm::StockB;
+    case AlgorithmKind::StockE: return scenes::Algorithm::StockE;
+    case AlgorithmKind::RayOnly:
+    case AlgorithmKind::Paper: return scenes::Algorithm::ThinToolPaper;
+    case AlgorithmKind::Swept: break;
+  }
+  return scenes::Algorithm::ThinTool;
+}
+
+btVector3 toBullet(const Vec3& v) { return btVector3(btScalar(v.x), btScalar(v.y), btScalar(v.z)); }
+
+btTransform toBullet(const Pose& pose) {
+  btMatrix3x3 basis;
+  for (int r = 0; r < 3; ++r) basis[r] = toBullet(pose.rotation.row[r]);
+  return btTransform(basis, toBullet(pose.translation));
+}
+
+Pose fromBullet(const btTransform& t) {
+  Pose pose;
+  for (int r = 0; r < 3; ++r) {
+    const btVector3& row = t.getBasis()[r];
+    pose.rotation.row[r] = {row.x(), row.y(), row.z()};
+  }
+  pose.translation = {t.getOrigin().x(), t.getOrigin().y(), t.getOrigin().z()};
+  return pose;
+}
+
+bool isIdentity(const Pose& pose) {
+  const Pose identity;
+  return pose.translation == identity.translation && pose.rotation.row[0] == identity.rotation.row[0] &&
+         pose.rotation.row[1] == identity.rotation.row[1] && pose.rotation.row[2] == identity.rotation.row[2];
+}
+
+// Everything Bullet needs kept alive, torn down in the right order by the destructor.
+struct World {
+  std::unique_ptr<btCollisionConfiguration> configuration;
+  std::unique_ptr<btCollisionDispatcher> dispatcher;
+  btDbvtBroadphase broadphase;
+  btSequentialImpulseConstraintSolver solver;
+  btDefaultSoftBodySolver softSolver;
+  std::unique_ptr<btSoftRigidDynamicsWorld> world;
+  btBoxShape groundShape{btVector3(20, 1, 20)};
+  btDefaultMotionState groundMotion{btTransform(btQuaternion::getIdentity(), btVector3(0, -1, 0))};
+  std::unique_ptr<btRigidBody> ground;
+  btSoftBody* soft = nullptr;
+  std::vector<std::unique_ptr<btCollisionShape>> shapes;
+  std::vector<std::unique_ptr<btDefaultMotionState>> motions;
+  std::vector<std::unique_ptr<btRigidBody>> tools;
+  std::vector<Tool*> thinTools;
+
+  ~World() {
+    for (std::size_t i = 0; i < tools.size(); ++i) {
+      if (thinTools[i] != nullptr) removeTool(*world, *tools[i]);
+      world->removeRigidBody(tools[i].get());
+    }
+    if (soft != nullptr) {
+      world->removeSoftBody(soft);
+      delete soft;
+    }
+    if (ground) world->removeRigidBody(ground.get());
+    world.reset();
+  }
+};
+
+btSoftBody* makeSoftBody(const SceneSpec& scene, btSoftBodyWorldInfo& info) {
+  const SoftBodySpec& soft = scene.soft;
+  switch (soft.mesh) {
+    case SoftBodySpec::Mesh::Ellipsoid:
+      return btSoftBodyHelpers::CreateEllipsoid(info, toBullet(soft.centre), toBullet(soft.radius), soft.resolution);
+    case SoftBodySpec::Mesh::Obj: {
+      std::vector<btScalar> coordinates;
+      for (const Vec3& v : soft.objMesh.vertices) {
+        const Vec3 p = v * soft.scale + soft.centre;
+        coordinates.insert(coordinates.end(), {btScalar(p.x), btScalar(p.y), btScalar(p.z)});
+      }
+      std::vector<int> indices;
+      for (const Triangle& t : soft.objMesh.triangles) indices.insert(indices.end(), t.begin(), t.end());
+      return btSoftBodyHelpers::CreateFromTriMesh(info, coordinates.data(), indices.data(),
+                                                  int(soft.objMesh.triangles.size()));
+    }
+    case SoftBodySpec::Mesh::Sheet:
+      break;
+  }
+  const double h = soft.sheetSize / 2;
+  const Vec3& c = soft.centre;
+  return btSoftBodyHelpers::CreatePatch(info, toBullet(c + Vec3{-h, 0, -h}), toBullet(c + Vec3{h, 0, -h}),
+                                        toBullet(c + Vec3{-h, 0, h}), toBullet(c + Vec3{h, 0, h}),
+                                        soft.nodesPerSide, soft.nodesPerSide, 1 + 2 + 4 + 8, true);
+}
+
+btCollisionShape* makePieceShape(const ToolPieceSpec& piece, World& w) {
+  if (piece.kind == ToolPieceSpec::Kind::Box) {
+    w.shapes.push_back(std::make_unique<btBoxShape>(toBullet(piece.halfExtents)));
+  } else {
+    auto hull = std::make_unique<btConvexHullShape>();
+    for (const Vec3& v : piece.hull.vertices) hull->addPoint(toBullet(v), false);
+    hull->recalcLocalAabb();
+    w.shapes.push_back(std::move(hull));
+  }
+  w.shapes.back()->setMargin(btScalar(0.001));
+  return w.shapes.back().get();
+}
+
+btCollisionShape* makeToolShape(const ToolSpec& tool, World& w) {
+  if (tool.pieces.size() == 1 && isIdentity(tool.pieces[0].offset)) return makePieceShape(tool.pieces[0], w);
+  auto compound = std::make_unique<btCompoundShape>();
+  for (const ToolPieceSpec& piece : tool.pieces) compound->addChildShape(toBullet(piece.offset), makePieceShape(piece, w));
+  w.shapes.push_back(std::move(compound));
+  return w.shapes.back().get();
+}
+
+ToolOptions optionsFor(const SceneSpec& scene, const ToolSpec& tool) {
+  ToolOptions options;
+  if (scene.algorithm == AlgorithmKind::Paper) options = ToolOptions::paper();
+  if (scene.algorithm == AlgorithmKind::RayOnly) options = ToolOptions::rayOnly();
+  options.name = tool.name;
+  options.force.enabled = scene.force;
+  options.response.friction.enabled = scene.friction;
+  return options;
+}
+
+std::vector<Vec3> nodesOf(const btSoftBody& soft) {
+  std::vector<Vec3> nodes(soft.m_nodes.size());
+  for (int i = 0; i < soft.m_nodes.size(); ++i) {
+    const btVector3& x = soft.m_nodes[i].m_x;
+    nodes[i] = {x.x(), x.y(), x.z()};
+  }
+  return nodes;
+}
+
+std::vector<Triangle> facesOf(const btSoftBody& soft) {
+  std::vector<Triangle> faces(soft.m_faces.size());
+  for (int i = 0; i < soft.m_faces.size(); ++i) {
+    for (int k = 0; k < 3; ++k) faces[i][k] = int(soft.m_faces[i].m_n[k] - &soft.m_nodes[0]);
+  }
+  return faces;
+}
+
+}  // namespace
+
+RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
+  const bool stock = isStock(scene.algorithm);
+  const scenes::SoftVariant variant = scenes::softVariantOf(baselineAlgorithmOf(scene.algorithm));
+
+  World w;
+  if (stock) {
+    w.configuration = std::make_unique<btSoftBodyRigidBodyCollisionConfiguration>();
+  } else {
+    w.configuration = std::make_unique<CollisionConfiguration>();
+  }
+  w.dispatcher = std::make_unique<btCollisionDispatcher>(w.configuration.get());
+  w.world = std::make_unique<btSoftRigidDynamicsWorld>(w.dispatcher.get(), &w.broadphase, &w.solver,
+                                                       w.configuration.get(), &w.softSolver);
+  btSoftRigidDynamicsWorld& world = *w.world;
+  world.setGravity(toBullet(scene.gravity));
+  btSoftBodyWorldInfo& info = world.getWorldInfo();
+  info.m_gravity = world.getGravity();
+  info.m_sparsesdf.setDefaultVoxelsz(btScalar(variant.voxel));
+  info.m_sparsesdf.Reset();
+  if (scene.ground) {
+    w.ground = std::make_unique<btRigidBody>(btRigidBody::btRigidBodyConstructionInfo(0, &w.groundMotion, &w.groundShape));
+    world.addRigidBody(w.ground.get());
+  }
+
+  w.soft = makeSoftBody(scene, info);
+  btSoftBody& soft = *w.soft;
+  const double substep = scene.timeStep / scene.substeps;
+  soft.m_materials[0]->m_kLST = btScalar(scene.soft.linearStiffness);
+  soft.m_cfg.kDF = btScalar(scene.soft.friction);
+  soft.m_cfg.kPR = btScalar(scene.soft.pressure);
+  soft.m_cfg.kKHR = btScalar(variant.kKHR);
+  soft.m_cfg.piterations = variant.positionIterations;
+  soft.m_cfg.kDP = btScalar(1 - std::pow(1 - scene.soft.damping, 60 * substep));
+  soft.setTotalMass(btScalar(scene.soft.mass));
+  soft.getCollisionShape()->setMargin(btScalar(variant.margin));
+  world.addSoftBody(w.soft);
+
+  GroundTruthRun noRun;
+  std::vector<GroundTruthPiece> pieces;
+  for (std::size_t t = 0; t < scene.tools.size(); ++t) {
+    const ToolSpec& tool = scene.tools[t];
+    Pose parked = poseAt(tool.trajectory, 0);
+    parked.translation.y += kParkedAbove;
+    w.motions.push_back(std::make_unique<btDefaultMotionState>(toBullet(parked)));
+    auto body = std::make_unique<btRigidBody>(
+        btRigidBody::btRigidBodyConstructionInfo(0, w.motions.back().get(), makeToolShape(tool, w)));
+    body->setCollisionFlags(body->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
+    body->setActivationState(DISABLE_DEACTIVATION);
+    world.addRigidBody(body.get());
+    w.tools.push_back(std::move(body));
+    w.thinTools.push_back(stock ? nullptr : &addTool(world, *w.tools.back(), optionsFor(scene, tool)));
+    for (const ToolPieceSpec& piece : tool.pieces) pieces.push_back({SolidDistance(solidOf(piece)), piece.offset, int(t)});
+  }
+
+  const btScalar dt = btScalar(scene.timeStep);
+  auto stepWorld = [&] {
+    const auto start = std::chrono::steady_clock::now();
+    world.stepSimulation(dt, scene.substeps, dt / btScalar(scene.substeps));
+    return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+  };
+  const int settleSteps = int(std::lround(scene.settleSeconds / scene.timeStep));
+  for (int i = 0; i < settleSteps; ++i) stepWorld();
+  if (options.settled) {
+    double low = std::numeric_limits<double>::max();
+    double high = -low;
+    for (int i = 0; i < soft.m_nodes.size(); ++i) {
+      low = std::min(low, double(soft.m_nodes[i].m_x.y()));
+      high = std::max(high, double(soft.m_nodes[i].m_x.y()));
+    }
+    options.settled(low, high);
+  }
+
+  // Out of the parking place: a jump, not a motion for swept detection to sweep.
+  std::vector<Pose> toolPoses;
+  for (std::size_t t = 0; t < scene.tools.size(); ++t) {
+    const Pose start = poseAt(scene.tools[t].trajectory, 0);
+    w.motions[t]->setWorldTransform(toBullet(start));
+    if (w.thinTools[t] != nullptr) w.thinTools[t]->resetMotion();
+    toolPoses.push_back(start);
+  }
+  stepWorld();
+
+  RunResult result;
+  result.scene = scene.name;
+  result.algorithm = scene.algorithm;
+  result.timeStep = scene.timeStep;
+  result.softNodes = soft.m_nodes.size();
+  result.softFaces = soft.m_faces.size();
+  for (Tool* tool : w.thinTools) result.toolNodes += tool != nullptr ? int(tool->nodeCount()) : 0;
+
+  const std::vector<Triangle> faces = facesOf(soft);
+  GroundTruth truth(std::move(pieces), scene.soft.mesh != SoftBodySpec::Mesh::Sheet);
+  truth.start(toolPoses, nodesOf(soft), faces);
+
+  const int steps = std::max(1, int(std::lround(scene.duration / scene.timeStep)));
+  double wall = 0;
+  double toolTime = 0;
+  for (int i = 1; i <= steps; ++i) {
+    const double time = i * scene.timeStep;
+    for (std::size_t t = 0; t < scene.tools.size(); ++t) {
+      toolPoses[t] = poseAt(scene.tools[t].trajectory, time);
+      w.motions[t]->setWorldTransform(toBullet(toolPoses[t]));
+    }
+    StepSample sample;
+    sample.time = time;
+    sample.stepMicroseconds = stepWorld();
+    for (Tool* tool : w.thinTools) {
+      if (tool == nullptr) continue;
+      const ToolStepReport& report = tool->report();
+      sample.toolMicroseconds += report.diagnostics.detectionMicroseconds + report.diagnostics.responseMicroseconds;
+      sample.force += report.contactForce.force;
+    }
+    const std::vector<Vec3> nodes = nodesOf(soft);
+    for (const Vec3& node : nodes) result.finite = result.finite && isFinite(node);
+    if (!result.finite) break;
+    for (std::size_t t = 0; t < scene.tools.size(); ++t) toolPoses[t] = fromBullet(w.tools[t]->getWorldTransform());
+    const GroundTruthStep& step = truth.update(toolPoses, nodes, faces);
+    sample.crossings = step.crossings;
+    sample.toolInside = step.toolInside;
+    sample.maxPenetration = step.maxPenetration;
+    wall += sample.stepMicroseconds;
+    toolTime += sample.toolMicroseconds;
+    result.peakForce = std::max(result.peakForce, length(sample.force));
+    result.samples.push_back(sample);
+    if (options.progress) options.progress(i, steps);
+  }
+  result.truth = truth.run();
+  const double measured = double(std::max<std::size_t>(1, result.samples.size()));
+  result.microsecondsPerStep = wall / measured;
+  result.toolMicrosecondsPerStep = toolTime / measured;
+  return result;
+}
+
+double forceError(const RunResult& run, const RunResult& reference) {
+  if (run.peakForce == 0 || reference.peakForce == 0 || run.samples.empty()) {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  double sumSquared = 0;
+  std::size_t j = 0;
+  for (const StepSample& r : reference.samples) {
+    while (j + 1 < run.samples.size() && run.samples[j + 1].time <= r.time) ++j;
+    Vec3 force = run.samples[j].force;
+    if (j + 1 < run.samples.size() && r.time > run.samples[j].time) {
+      const StepSample& a = run.samples[j];
+      const StepSample& b = run.samples[j + 1];
+      const double s = std::min(1.0, (r.time - a.time) / (b.time - a.time));
+      force = a.force + (b.force - a.force) * s;
+    }
+    sumSquared += lengthSquared(force - r.force);
+  }
+  return std::sqrt(sumSquared / double(reference.samples.size())) / reference.peakForce;
+}
+
+}  // namespace thintool::eval

@@ -1,0 +1,60 @@
+// SPDX-License-Identifier: Zlib
+// Copyright (c) 2026 The ThinTool developers
+#pragma once
+
+/// @file
+/// Runs one scene file's scene in Bullet and measures it: accuracy by the ground truth
+/// (GroundTruth.h), cost by the wall time of every stepSimulation call and ThinTool's own share of
+/// it, from the same run. The ground truth is computed between steps and never timed.
+
+#include "GroundTruth.h"
+#include "SceneFile.h"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace thintool::eval {
+
+struct StepSample {
+  double time = 0;               ///< s after t = 0, at the step's end
+  int crossings = 0;
+  bool toolInside = false;
+  double maxPenetration = 0;     ///< m
+  double stepMicroseconds = 0;   ///< stepSimulation's wall time
+  double toolMicroseconds = 0;   ///< ThinTool's detection and response (0 for stock)
+  Vec3 force;                    ///< N, the tissue's force on the tools (ThinTool with force on)
+};
+
+struct RunResult {
+  std::string scene;
+  AlgorithmKind algorithm = AlgorithmKind::Swept;
+  double timeStep = 0;
+  int softNodes = 0;
+  int softFaces = 0;
+  int toolNodes = 0;             ///< ThinTool's sample nodes over all tools (0 for stock)
+  GroundTruthRun truth;
+  double microsecondsPerStep = 0;
+  double toolMicrosecondsPerStep = 0;
+  double peakForce = 0;          ///< N, largest |force| of a step
+  bool finite = true;            ///< false when a soft node became non-finite (the run stops there)
+  std::vector<StepSample> samples;
+};
+
+struct RunOptions {
+  /// Called after each step with (steps done, steps in all).
+  std::function<void(int, int)> progress;
+  /// Called once the soft body has settled, with its lowest and highest node heights (m).
+  std::function<void(double, double)> settled;
+};
+
+/// Builds the scene's world, settles it, drives the tools through their trajectories and measures.
+/// Throws thintool::Error for a scene ThinTool refuses (the message names the tool).
+RunResult runScene(const SceneSpec& scene, const RunOptions& options = {});
+
+/// The force error of a run against a reference run of the same scene (finest step and mesh): the
+/// RMS over the reference's steps of |F(t) − F_ref(t)|, F linear between the run's steps, divided
+/// by the reference's peak |F|. NaN when either run has no force (stock runs, force off).
+double forceError(const RunResult& run, const RunResult& reference);
+
+}  // namespace thintool::eval

@@ -1,0 +1,136 @@
+// SPDX-License-Identifier: Zlib
+// Copyright (c) 2026 The ThinTool developers
+#pragma once
+
+/// @file
+/// The evaluation suite's scene files: JSON naming a soft body, the tools and their trajectories,
+/// the step and which algorithm handles the tool–tissue contact. eval/scenes/README.md documents
+/// every field with its unit and default; loadScene() reads a file into plain data and reports the
+/// first problem as "file:line:column: field: what was expected". Unknown fields are errors, so a
+/// typo never silently falls back to a default.
+
+#include "GroundTruth.h"
+#include "ObjMesh.h"
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace thintool::eval {
+
+/// Who handles the tool–tissue contact. The stock variants are baseline.md's; ThinTool's run on
+/// variant E's soft settings (realistic skin), as in the README's tables.
+enum class AlgorithmKind {
+  StockA,    ///< Bullet's defaults: margin 0.25, kKHR 0.1, 1 position iteration, SDF voxel 0.25
+  StockB,    ///< A with kKHR 1 and 10 iterations
+  StockE,    ///< B with margin 0.05 and voxel 0.02
+  RayOnly,   ///< ThinTool: the paper's discrete rays without association or checks (Fig. 7 right)
+  Paper,     ///< ThinTool: the paper's full algorithm (discrete)
+  Swept,     ///< ThinTool's default: swept detection
+};
+/// The name used in scene files and result tables: "stock-A", ..., "swept".
+const char* algorithmKey(AlgorithmKind kind);
+bool isStock(AlgorithmKind kind);
+
+struct SoftBodySpec {
+  enum class Mesh { Ellipsoid, Obj, Sheet };
+  Mesh mesh = Mesh::Ellipsoid;
+  // Ellipsoid: Bullet's CreateEllipsoid, 2·(resolution + 1) faces.
+  int resolution = 63;
+  Vec3 centre{0, 1.3, 0};   ///< m (also the OBJ's translation, and the sheet's centre)
+  Vec3 radius{1, 1, 1};     ///< m
+  // OBJ: a closed surface mesh, scaled then moved to centre.
+  std::string objFile;      ///< as written in the file
+  double scale = 1;
+  TriangleMesh objMesh;     ///< read when the scene is loaded, unscaled
+  // Sheet: a square patch in the xz plane, nodesPerSide² nodes, pinned at its four corners.
+  double sheetSize = 1;     ///< m, side
+  int nodesPerSide = 17;
+  // Material (btSoftBody's): a closed body is held up by pressure.
+  double mass = 1;             ///< kg, whole body
+  double linearStiffness = 0.5;  ///< kLST, 0..1
+  double pressure = 50;        ///< kPR, Pa; 0 for a sheet
+  double friction = 0.5;       ///< kDF
+  double damping = 0.05;       ///< kDP at a 1/60 s step; other steps get the same damping per second
+};
+
+/// Rotations are rotation vectors in degrees: the axis scaled by the angle, [0, 0, 30] turning
+/// 30° about z.
+Pose poseOf(const Vec3& position, const Vec3& rotationDegrees);
+
+struct ToolPieceSpec {
+  enum class Kind { Box, Hull };
+  Kind kind = Kind::Box;
+  Vec3 halfExtents{0.4, 0.01, 0.4};  ///< m
+  std::string objFile;               ///< hull: a closed convex OBJ, as written in the file
+  double scale = 1;
+  ConvexSolid hull;                  ///< read when the scene is loaded, scaled
+  Pose offset;                       ///< the piece in the tool's frame (compound tools)
+};
+
+struct TrajectorySpec {
+  enum class Kind { ConstantVelocity, Waypoints, Csv };
+  Kind kind = Kind::ConstantVelocity;
+  // Constant velocity: from start, `distance` along `direction` at `speed`, then held.
+  Vec3 start{0, 2.5, 0};      ///< m, at t = 0
+  Vec3 rotation;              ///< degrees, fixed
+  Vec3 direction{0, -1, 0};   ///< unit
+  double speed = 1;           ///< m/s
+  double distance = 1;        ///< m
+  struct Waypoint {
+    double time = 0;  ///< s
+    Vec3 position;    ///< m
+    Vec3 rotation;    ///< degrees
+  };
+  /// Waypoints and CSV rows: poses at increasing times, linear in position and rotation vector
+  /// between them, held before the first and after the last.
+  std::vector<Waypoint> waypoints;
+  std::string csvFile;  ///< columns t,x,y,z[,rx,ry,rz] (s, m, degrees), read into waypoints
+};
+
+struct ToolSpec {
+  std::string name;
+  std::vector<ToolPieceSpec> pieces;  ///< one for a box or hull tool, several for a compound
+  TrajectorySpec trajectory;
+};
+
+struct SceneSpec {
+  std::string name;
+  std::string sourcePath;
+  double timeStep = 1.0 / 60;  ///< s
+  int substeps = 1;
+  double settleSeconds = 2;    ///< s before t = 0, tools parked at their first pose
+  double duration = 0;         ///< s after t = 0; 0: the last trajectory's end plus holdSeconds
+  double holdSeconds = 0.25;   ///< s
+  Vec3 gravity{0, -10, 0};     ///< m/s²
+  bool ground = true;          ///< a static box whose top is y = 0
+  SoftBodySpec soft;
+  std::vector<ToolSpec> tools;
+  AlgorithmKind algorithm = AlgorithmKind::Swept;
+  bool force = false;          ///< ThinTool: the Hunt–Crossley force (force error needs it)
+  bool friction = false;       ///< ThinTool: Coulomb friction at the tool
+};
+
+/// An override applied to the file's JSON before it is read: path=value, the path in dots and
+/// [index] (tools[0].trajectory.velocity), the value JSON or, failing that, a bare string.
+struct Override {
+  std::string path;
+  std::string value;
+};
+/// Parses "path=value"; throws thintool::Error.
+Override parseOverride(const std::string& text);
+
+/// Reads a scene file, applying the overrides first. Throws thintool::Error.
+SceneSpec loadScene(const std::string& path, const std::vector<Override>& overrides = {});
+/// The same from text; relative file names resolve against baseFolder.
+SceneSpec parseScene(const std::string& text, const std::string& sourceName, const std::string& baseFolder,
+                     const std::vector<Override>& overrides = {});
+
+/// A piece's convex solid in its own frame, for the ground truth and for building the Bullet shape.
+ConvexSolid solidOf(const ToolPieceSpec& piece);
+
+/// The tool's pose at time t (s) of its trajectory, and when the trajectory stops moving.
+Pose poseAt(const TrajectorySpec& trajectory, double time);
+double endTime(const TrajectorySpec& trajectory);
+
+}  // namespace thintool::eval

@@ -1,0 +1,76 @@
+// SPDX-License-Identifier: Zlib
+// Copyright (c) 2026 The ThinTool developers
+//
+// The runner on the shipped scenes: the ground truth tells stock Bullet's and the paper's
+// failures from the swept detection's success, with the time per step beside them.
+
+#include <Runner.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace thintool::eval {
+namespace {
+
+const std::string kScenes = THINTOOL_EVAL_SCENES;
+
+RunResult run(const std::string& file, const std::vector<std::string>& overrides) {
+  std::vector<Override> parsed;
+  for (const std::string& o : overrides) parsed.push_back(parseOverride(o));
+  return runScene(loadScene(kScenes + "/" + file, parsed));
+}
+
+TEST(Runner, ThePlatePressTellsStockFromSwept) {
+  const RunResult stock = run("plate_press.json", {"algorithm=stock-E", "tools[0].trajectory.speed=5"});
+  const RunResult swept = run("plate_press.json", {"algorithm=swept", "tools[0].trajectory.speed=5"});
+  EXPECT_GT(stock.truth.crossedNodes, 0);
+  EXPECT_GT(stock.truth.toolInsideSteps, 0);
+  EXPECT_EQ(swept.truth.crossedNodes, 0);
+  EXPECT_EQ(swept.truth.toolInsideSteps, 0);
+  EXPECT_EQ(swept.truth.maxPenetration, 0);
+  for (const RunResult* r : {&stock, &swept}) {
+    EXPECT_EQ(r->softFaces, 128);
+    EXPECT_TRUE(r->finite);
+    EXPECT_GT(r->microsecondsPerStep, 0);
+    EXPECT_EQ(std::size_t(r->truth.steps), r->samples.size());
+  }
+  EXPECT_EQ(stock.toolNodes, 0);
+  EXPECT_GT(swept.toolNodes, 100);
+  EXPECT_GT(swept.toolMicrosecondsPerStep, 0);
+  EXPECT_LT(swept.toolMicrosecondsPerStep, swept.microsecondsPerStep);
+}
+
+TEST(Runner, TheSheetIsPiercedByThePaperAndCaughtBySweptDetection) {
+  const RunResult paper = run("sheet_pierce.json", {"algorithm=paper"});
+  const RunResult swept = run("sheet_pierce.json", {"algorithm=swept"});
+  EXPECT_GT(paper.truth.crossedNodes, 0);
+  EXPECT_GT(paper.truth.stillCrossed, 0);
+  EXPECT_EQ(swept.truth.crossedNodes, 0);
+}
+
+TEST(Runner, TheForceErrorIsZeroAgainstItselfAndNaNWithoutAForce) {
+  const RunResult coarse = run("plate_press.json", {"thintool.force=true", "tools[0].trajectory.speed=2"});
+  const RunResult fine = run("plate_press.json", {"thintool.force=true", "tools[0].trajectory.speed=2", "step.dt=1/240"});
+  const RunResult stock = run("plate_press.json", {"algorithm=stock-E", "tools[0].trajectory.speed=2"});
+  ASSERT_GT(coarse.peakForce, 0);
+  EXPECT_EQ(forceError(coarse, coarse), 0);
+  const double error = forceError(coarse, fine);
+  EXPECT_GT(error, 0);
+  EXPECT_LT(error, 1);
+  EXPECT_TRUE(std::isnan(forceError(stock, fine)));
+}
+
+TEST(Runner, EveryShippedSceneRunsWithItsOwnAlgorithm) {
+  for (const char* file : {"clamp_grasp.json", "needle_press.json", "blade_angle.json", "vessel_press.json"}) {
+    SCOPED_TRACE(file);
+    const RunResult result = run(file, {"step.duration=0.5"});
+    EXPECT_TRUE(result.finite);
+    EXPECT_EQ(result.truth.crossedNodes, 0);
+    EXPECT_EQ(result.truth.toolInsideSteps, 0);
+    EXPECT_GT(result.softFaces, 0);
+  }
+}
+
+}  // namespace
+}  // namespace thintool::eval
