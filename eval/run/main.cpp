@@ -12,6 +12,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -242,13 +243,24 @@ int run(int argc, char** argv) {
   }
 
   // Every combination of the swept values, for every file; each is read (and checked) up front,
-  // so that a bad value fails before hours of runs, not after.
+  // so that a bad value fails before hours of runs, not after. A job's reference run shares its
+  // swept values but those the reference overrides, so one reference serves every job that
+  // differs from it only there (every algorithm and step of one speed, say).
   struct Job {
     std::string file;
     std::vector<std::string> values;
     SceneSpec scene;
+    std::string referenceKey;
+    std::vector<Override> referenceOverrides;
+  };
+  auto overridden = [&](const std::string& path) {
+    for (const Override& o : referenceSets) {
+      if (o.path == path) return true;
+    }
+    return false;
   };
   std::vector<Job> jobs;
+  std::vector<std::string> referenceKeys;
   std::size_t combinations = 1;
   for (const Sweep& s : sweeps) combinations *= s.values.size();
   for (const std::string& file : files) {
@@ -261,43 +273,54 @@ int run(int argc, char** argv) {
         rest /= s->values.size();
       }
       for (std::size_t s = 0; s < sweeps.size(); ++s) overrides.push_back({sweeps[s].path, values[s]});
-      jobs.push_back({file, values, loadScene(file, overrides)});
+      Job job{file, values, loadScene(file, overrides), "", {}};
+      if (reference) {
+        job.referenceKey = file;
+        job.referenceOverrides = sets;
+        for (std::size_t s = 0; s < sweeps.size(); ++s) {
+          if (overridden(sweeps[s].path)) continue;
+          job.referenceOverrides.push_back({sweeps[s].path, values[s]});
+          job.referenceKey += "|" + sweeps[s].path + "=" + values[s];
+        }
+        job.referenceOverrides.insert(job.referenceOverrides.end(), referenceSets.begin(), referenceSets.end());
+        loadScene(file, job.referenceOverrides);
+        if (std::find(referenceKeys.begin(), referenceKeys.end(), job.referenceKey) == referenceKeys.end()) {
+          referenceKeys.push_back(job.referenceKey);
+        }
+      }
+      jobs.push_back(std::move(job));
     }
   }
 
-  Progress progress(!quiet, int(jobs.size() + (reference ? files.size() : 0)));
+  Progress progress(!quiet, int(jobs.size() + referenceKeys.size()));
   int runIndex = 0;
-  std::vector<RunResult> references;
-  if (reference) {
-    for (const std::string& file : files) {
-      std::vector<Override> overrides = sets;
-      overrides.insert(overrides.end(), referenceSets.begin(), referenceSets.end());
-      const SceneSpec scene = loadScene(file, overrides);
-      progress.begin(++runIndex, "reference " + scene.name + " " + algorithmKey(scene.algorithm) + " dt " +
-                                     stepName(scene.timeStep));
-      references.push_back(runScene(scene, {[&](int d, int n) { progress.update(d, n); }, {}}));
-    }
+  RunOptions runOptions;
+  runOptions.progress = [&](int done, int steps) { progress.update(done, steps); };
+  if (!quiet) {
+    // Where the settled body lies, for whoever writes a trajectory's start.
+    runOptions.settled = [](double low, double high) {
+      std::fprintf(stderr, "  settled: the soft body spans y = %.3f to %.3f m\n", low, high);
+    };
   }
+  std::vector<std::pair<std::string, RunResult>> references;
+  auto referenceFor = [&](const Job& job) -> const RunResult& {
+    for (const auto& r : references) {
+      if (r.first == job.referenceKey) return r.second;
+    }
+    const SceneSpec scene = loadScene(job.file, job.referenceOverrides);
+    progress.begin(++runIndex, "reference for " + job.referenceKey);
+    references.emplace_back(job.referenceKey, runScene(scene, runOptions));
+    return references.back().second;
+  };
 
   std::vector<Row> rows;
   for (const Job& job : jobs) {
+    const RunResult* referenceRun = reference ? &referenceFor(job) : nullptr;
     std::string label = job.scene.name;
     for (std::size_t s = 0; s < sweeps.size(); ++s) label += " " + sweeps[s].path + "=" + job.values[s];
     progress.begin(++runIndex, label);
-    RunOptions runOptions;
-    runOptions.progress = [&](int done, int steps) { progress.update(done, steps); };
-    if (!quiet) {
-      // Where the settled body lies, for whoever writes a trajectory's start.
-      runOptions.settled = [](double low, double high) {
-        std::fprintf(stderr, "  settled: the soft body spans y = %.3f to %.3f m\n", low, high);
-      };
-    }
     Row row{job.file, job.values, runScene(job.scene, runOptions), std::nan("")};
-    if (reference) {
-      for (std::size_t f = 0; f < files.size(); ++f) {
-        if (files[f] == job.file) row.forceError = forceError(row.result, references[f]);
-      }
-    }
+    if (referenceRun != nullptr) row.forceError = forceError(row.result, *referenceRun);
     if (!stepsFolder.empty()) writeSteps(stepsFolder, int(rows.size()), row.result);
     rows.push_back(std::move(row));
   }
