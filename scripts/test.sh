@@ -17,7 +17,7 @@ CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTHINTOO
   -DTHINTOOL_BUILD_TESTS=OFF -DTHINTOOL_BUILD_EXAMPLES=OFF -DTHINTOOL_BUILD_BENCHMARKS=OFF
 cmake --build build-fuzz --parallel 2
 # A fixed seed and run count: the same inputs every time, so a CI run never fails by luck.
-for run in tool_model:40000 replay:400000; do
+for run in tool_model:40000 replay:400000 json:150000; do
   target=${run%%:*}
   # The shipped corpus is the seed; new finds go to a scratch copy, never into the tree.
   rm -rf "build-fuzz/corpus-$target" && cp -r "fuzz/corpus/$target" "build-fuzz/corpus-$target"
