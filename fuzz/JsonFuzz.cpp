@@ -1,11 +1,14 @@
 // SPDX-License-Identifier: Zlib
 // Copyright (c) 2026 The ThinTool developers
 //
-// libFuzzer target: the evaluation suite's JSON parser. Any bytes either parse, giving a value
-// whose every number is finite and whose every position is a real line and column, or throw
-// thintool::Error; nothing else may happen, whatever the nesting, escapes or numbers.
+// libFuzzer target: the evaluation suite's JSON parser and scene-file reader. Any bytes either
+// parse, giving a value whose every number is finite and whose every position is a real line and
+// column, or throw thintool::Error; nothing else may happen, whatever the nesting, escapes or
+// numbers. Text that parses is then read as a scene file, which must give a scene with a positive
+// step and duration or throw thintool::Error (files it names are looked for where none exist).
 
 #include "Json.h"
+#include "SceneFile.h"
 
 #include <thintool/core/Error.h>
 
@@ -34,8 +37,15 @@ void check(const JsonValue& value) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* bytes, size_t size) {
+  const std::string text(reinterpret_cast<const char*>(bytes), size);
   try {
-    check(thintool::eval::parseJson(std::string_view(reinterpret_cast<const char*>(bytes), size), "fuzz.json"));
+    check(thintool::eval::parseJson(text, "fuzz.json"));
+  } catch (const thintool::Error&) {
+    return 0;
+  }
+  try {
+    const thintool::eval::SceneSpec scene = thintool::eval::parseScene(text, "fuzz.json", "/nonexistent");
+    if (!(scene.timeStep > 0) || !(scene.duration > 0) || scene.tools.empty()) __builtin_trap();
   } catch (const thintool::Error&) {
   }
   return 0;
