@@ -405,6 +405,7 @@ SceneSpec parseScene(const std::string& text, const std::string& sourceName, con
     double end = 0;
     for (const ToolSpec& tool : spec.tools) end = std::max(end, endTime(tool.trajectory));
     spec.duration = end + spec.holdSeconds;
+    if (!(spec.duration > 0)) scene.fail("the scene lasts 0 s: give step.duration, step.hold or a trajectory that moves");
   }
   if (spec.duration / spec.timeStep > 1e7) scene.at("step").fail("more than 10 million steps");
   return spec;

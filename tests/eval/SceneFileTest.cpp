@@ -108,6 +108,11 @@ TEST(SceneFile, ErrorsNameFileLineFieldAndWhatWasExpected) {
   error = errorOf(replaced(kMinimal, "\"soft\"", "\"sfot\""));
   EXPECT_NE(error.find("sfot"), std::string::npos) << error;
 
+  // Found by fuzz_json: a tool that never moves, no hold and no duration made a scene of 0 s.
+  error = errorOf(R"({"step": {"hold": 0}, "soft": {"mesh": "ellipsoid"}, "tools": [{"shape": {"type": "box",
+    "half_extents": [1, 1, 1]}, "trajectory": {"type": "waypoints", "points": [{"t": 0, "position": [0, 5, 0]}]}}]})");
+  EXPECT_NE(error.find("lasts 0 s"), std::string::npos) << error;
+
   error = errorOf("{\"soft\": {\"mesh\": \"ellipsoid\"}, \"tools\": []}");
   EXPECT_NE(error.find("tools"), std::string::npos) << error;
 
