@@ -173,7 +173,7 @@ def plots(folder, study, rows_by_tool, speeds, rates, mesh_rows):
         f"'{rel}/points-{a}.dat' using 1:2 with points pt 7 ps 0.8 title '{NAMES[a]}'" for a in ALGORITHMS
     )
     plot_pen = ", ".join(f"'{rel}/points-{a}.dat' using 1:3 with points pt 7 ps 0.8 title '{NAMES[a]}'" for a in ALGORITHMS)
-    script = f"""
+    matrix_script = f"""
 set terminal pngcairo size 1400,560 font ',10'
 set output 'study-error-time.png'
 set multiplot layout 1,2 title 'Error against run time: one point per run (plate and needle, 4 steps, 5 speeds, 128-face ball)'
@@ -196,8 +196,11 @@ set ylabel 'failing share'
 set yrange [-0.05:1.05]
 set key outside right font ',8'
 plot for [i=2:{len(ALGORITHMS) + 1}] '{rel}/tunnelling.dat' using 1:i with linespoints lw 2 title columnheader(i)
-
+"""
+    mesh_script = f"""
+set terminal pngcairo size 900,560 font ',10'
 set output 'study-fig11.png'
+set key outside right font ',8'
 set logscale xy
 set autoscale y
 set title "Time per step against soft-body triangles (the paper's Fig. 11): plate at 1 m/s, 1/60 s"
@@ -206,7 +209,8 @@ set ylabel "us per step (solid: stepSimulation; dashed: ThinTool's share)"
 plot for [i=0:{len(ALGORITHMS) - 1}] '{rel}/mesh.dat' using 1:(column(2*i+2)) with linespoints lw 2 title columnheader(2*i+2), \\
      for [i=3:{len(ALGORITHMS) - 1}] '{rel}/mesh.dat' using 1:(column(2*i+3)) with linespoints dt 2 lw 2 title columnheader(2*i+3)
 """
-    return gnuplot(script, folder)
+    script = (matrix_script if rows_by_tool else "") + (mesh_script if mesh_rows else "")
+    return gnuplot(script, folder) if script else False
 
 
 def main():
@@ -218,6 +222,13 @@ def main():
             rows_by_tool[tool] = rows
     mesh_rows = read(os.path.join(study, "plate_press-mesh.csv"))
     speeds, rates = tunnelling(rows_by_tool)
+    all_rows = [r for rows in rows_by_tool.values() for r in rows]
+    algorithms = [a for a in ALGORITHMS if any(r["algorithm"] == a for r in all_rows)]
+    steps = []
+    for r in sorted(all_rows, key=lambda r: -num(r["dt"])):
+        name = "1/%d" % round(1 / num(r["dt"]))
+        if name not in steps:
+            steps.append(name)
     folder = os.path.dirname(os.path.abspath(output))
     plotted = plots(folder, study, rows_by_tool, speeds, rates, mesh_rows)
 
@@ -229,19 +240,21 @@ def main():
         "ground truth's (`eval/GroundTruth.h`), time is `stepSimulation`'s wall time and ThinTool's share of it,",
         "from the same runs. A case fails when a node crossed the tool or the tool's centre was inside the ball.",
         "",
-        "## The matrix: 6 algorithms x 4 steps (1/30 to 1/1000 s) x 5 speeds (0.1 to 50 m/s), plate and needle",
+        "## The matrix: %d algorithms x %d steps (%s s) x %d speeds (%s m/s), %s"
+        % (len(algorithms), len(steps), ", ".join(steps), len(speeds), ", ".join(fmt(v) for v in speeds),
+           " and ".join(rows_by_tool)),
         "",
         "The paper's 128-face ball. Force error: RMS of |F - F_ref| over the run, over the reference's peak,",
-        "against swept detection at 1/1000 s on the 512-face ball at the same speed (ThinTool's Hunt–Crossley",
-        "force; stock Bullet reports none).",
+        "against the reference run `scripts/study.sh` names (swept detection at 1/1000 s on the 512-face",
+        "ball at the same speed; ThinTool's Hunt–Crossley force, stock Bullet reports none).",
         "",
     ]
     out += matrix_tables(rows_by_tool)
-    out += ["", "Failing share by speed (over both tools and the 4 steps):", ""]
+    out += ["", "Failing share by speed (over the tools and steps):", ""]
     out.append("| algorithm | " + " | ".join(f"{fmt(s)} m/s" for s in speeds) + " |")
     out.append("|---|" + "---|" * len(speeds))
-    for algorithm in ALGORITHMS:
-        if algorithm in rates:
+    for algorithm in algorithms:
+        if rates.get(algorithm):
             out.append(f"| {NAMES[algorithm]} | " + " | ".join(fmt(rates[algorithm].get(s, float('nan')), 2) for s in speeds) + " |")
     if mesh_rows:
         out += [
@@ -255,8 +268,11 @@ def main():
         ]
         out += mesh_table(mesh_rows)
     if plotted:
-        out += ["", "## Plots", "", "![error against time](study-error-time.png)", "",
-                "![tunnelling against speed](study-tunnelling.png)", "", "![time against triangles](study-fig11.png)"]
+        out += ["", "## Plots", ""]
+        if rows_by_tool:
+            out += ["![error against time](study-error-time.png)", "", "![tunnelling against speed](study-tunnelling.png)", ""]
+        if mesh_rows:
+            out += ["![time against triangles](study-fig11.png)"]
     with open(output, "w") as f:
         f.write("\n".join(out) + "\n")
 

@@ -40,3 +40,22 @@ execute_process(COMMAND ${RUNNER} --quiet ${OUT}/bad.json RESULT_VARIABLE status
 if(NOT status EQUAL 1 OR NOT errors MATCHES "bad.json:[0-9]+:[0-9]+: tools\\[0\\]\\.trajectory: .*sped.*speed")
   message(FATAL_ERROR "a misspelt field gave status ${status} and: ${errors}")
 endif()
+
+# The study's report on a small matrix of its own: two algorithms at two speeds.
+if(PYTHON)
+  file(MAKE_DIRECTORY ${OUT}/study)
+  execute_process(
+    COMMAND ${RUNNER} --quiet ${SCENES}/plate_press.json --set thintool.force=true
+            --sweep algorithm=stock-E,swept --sweep tools[0].trajectory.speed=1,5
+            --reference step.dt=1/240 --reference algorithm=swept --csv ${OUT}/study/plate_press-matrix.csv
+    RESULT_VARIABLE status OUTPUT_QUIET ERROR_VARIABLE errors)
+  if(NOT status EQUAL 0)
+    message(FATAL_ERROR "the small matrix failed (${status}): ${errors}")
+  endif()
+  execute_process(COMMAND ${PYTHON} ${REPORT} ${OUT}/study ${OUT}/study.md RESULT_VARIABLE status ERROR_VARIABLE errors)
+  file(READ ${OUT}/study.md report)
+  if(NOT status EQUAL 0 OR NOT report MATCHES "\\| plate \\| ThinTool, swept \\(default\\) \\| 0 of 2 \\| 0 \\| 0 \\|"
+     OR NOT report MATCHES "\\| plate \\| stock E \\(B, skin 0.05\\) \\| [12] of 2 \\|")
+    message(FATAL_ERROR "the study report (${status}): ${errors}\n${report}")
+  endif()
+endif()
