@@ -47,6 +47,10 @@ struct SceneSettings {
   ToolShape tool = ToolShape::Plate;
   double timeStep = 1.0 / 60;  ///< s
   int ballResolution = 63;     ///< btSoftBodyHelpers::CreateEllipsoid's res: 63 gives 128 faces
+  /// Joins CreateEllipsoid's res + 3 points by btConvexHullComputer instead of CreateEllipsoid's
+  /// hull library, which gives a unit ball no more than about 2,360 faces whatever res asks for
+  /// (2,298 for res 2,047); this keeps every point: 2·(res + 1) faces, 65,536 for res 32,767.
+  bool exactBallHull = false;
   double settleSeconds = 2;
   int substeps = 1;  ///< internal steps per timeStep: stepSimulation(timeStep, substeps, timeStep / substeps)
   thintool::ToolOptions toolOptions;  ///< used when algorithm is ThinTool; ThinToolPaper sets swept = false
@@ -78,6 +82,7 @@ class SoftBallScene {
   btSoftRigidDynamicsWorld& world() { return *m_world; }
   btSoftBody& ball() { return *m_ball; }
   btRigidBody& toolBody() { return *m_tool; }
+  btRigidBody& ground();
   thintool::Tool* tool() { return m_thinTool; }
   const SceneSettings& settings() const { return m_settings; }
   ToolBox toolBox() const;
