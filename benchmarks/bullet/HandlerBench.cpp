@@ -30,8 +30,8 @@
 // came from), which the replay does not rewind: from the first replay on, each call sweeps the nodes
 // from where the previous call left them to their predicted positions, as in a run where the solver
 // moves nothing in between. The contacts counter is the replay's (stepContacts the real step's), and
-// stepUs is the real step's time for the same pairs, where stock builds distance field cells that
-// the replays find built. facesNear is what ThinTool gathered, facesInSweptBox the faces that meet
+// stepUs is the real step's time for the same pairs (stepDetectUs and stepFacesNear ThinTool's
+// detection in it), where stock builds distance field cells that the replays find built. facesNear is what ThinTool gathered, facesInSweptBox the faces that meet
 // the plate's swept box grown by the margin, nodesNear the nodes in stock's query box. The allocs
 // counter counts operator new and Bullet's allocator per replay.
 //
@@ -128,6 +128,8 @@ struct Replay {
   std::vector<int> nearNodes;            // restored before each replay
   double stepMicroseconds = 0;
   long stepContacts = 0;
+  double stepDetectMicroseconds = 0;  // ThinTool's own clock in the real step
+  double stepFacesNear = 0;
   int nodesNear = 0;         // nodes inside the stock handler's query box
   int facesInSweptBox = 0;   // faces meeting the plate's swept box grown by the margin
 
@@ -196,7 +198,10 @@ struct Replay {
     dispatcher->setNearCallback(&btCollisionDispatcher::defaultNearCallback);
     capturing = nullptr;
     if (thintool::Tool* tool = scene->tool()) {
-      stepContacts = static_cast<long>(tool->report().diagnostics.detection.colliding);
+      const thintool::ToolDiagnostics& d = tool->report().diagnostics;
+      stepContacts = static_cast<long>(d.detection.colliding);
+      stepDetectMicroseconds = d.detectionMicroseconds;
+      stepFacesNear = d.detection.facesGathered;
     } else {
       stepContacts = countStockContacts();
     }
@@ -366,6 +371,8 @@ void run(benchmark::State& state, Algorithm algorithm) {
     state.counters["tests"] = tests / n;
     state.counters["detectUs"] = detect / n;
     state.counters["responseUs"] = respond / n;
+    state.counters["stepDetectUs"] = replay.stepDetectMicroseconds;
+    state.counters["stepFacesNear"] = replay.stepFacesNear;
   } else {
     state.counters["nodesNear"] = replay.nodesNear;
   }
