@@ -8,8 +8,15 @@
 #include <BulletSoftBody/btSoftRigidDynamicsWorld.h>
 #include <btBulletDynamicsCommon.h>
 
+#include <LinearMath/btConvexHullComputer.h>
+
+#include <thintool/geometry/RayTriangle.h>
+
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
+#include <vector>
 
 namespace thintool::scenes {
 
@@ -32,6 +39,97 @@ SoftVariant softVariantOf(Algorithm algorithm) {
       break;
   }
   return {0.05, 1, 10, 0.02};
+}
+
+// CreateEllipsoid's ball with every one of its points kept (SceneSettings::exactBallHull). The
+// points are the same Hammersley set on the sphere: heights from the base-2 radical inverse of the
+// point's index, angles evenly spread. btConvexHullComputer joins them, but it rounds its input to
+// 1/10,216 of the box's extent, and past some 8,000 points on a unit ball that drops points the
+// sphere's curvature no longer lifts above their neighbours' plane (657 of 32,770 for res 32,767);
+// each is put back into the face it lies over, split in three. Every point is then a node, and a
+// closed surface of V nodes has 2·V - 4 faces.
+btSoftBody* createExactHullEllipsoid(btSoftBodyWorldInfo& info, const btVector3& centre, const btVector3& radii,
+                                     int res) {
+  const int count = res + 3;
+  std::vector<Vec3> points(static_cast<std::size_t>(count));
+  const Vec3 middle{centre.x(), centre.y(), centre.z()};
+  for (int i = 0; i < count; ++i) {
+    double inverse = 0;
+    double weight = 0.5;
+    for (unsigned bits = static_cast<unsigned>(i); bits != 0; bits >>= 1, weight *= 0.5) {
+      inverse += (bits & 1U) != 0 ? weight : 0;
+    }
+    const double z = 2 * inverse - 1;
+    const double angle = kPi * (1 + 2.0 * i) / count;
+    const double ring = std::sqrt(1 - z * z);
+    points[static_cast<std::size_t>(i)] =
+        middle + Vec3{ring * std::cos(angle) * radii.x(), ring * std::sin(angle) * radii.y(), z * radii.z()};
+  }
+  btConvexHullComputer hull;
+  hull.compute(&points[0].x, static_cast<int>(sizeof(Vec3)), count, 0, 0);
+
+  // The hull's faces, on the input's indices (its own vertices are the rounded points), as fans.
+  std::vector<std::array<int, 3>> faces;
+  std::vector<char> kept(points.size(), 0);
+  std::vector<int> polygon;
+  for (int f = 0; f < hull.faces.size(); ++f) {
+    const btConvexHullComputer::Edge* first = &hull.edges[hull.faces[f]];
+    polygon.clear();
+    const btConvexHullComputer::Edge* edge = first;
+    do {
+      polygon.push_back(hull.original_vertex_index[edge->getSourceVertex()]);
+      edge = edge->getNextEdgeOfFace();
+    } while (edge != first);
+    for (std::size_t k = 1; k + 1 < polygon.size(); ++k) {
+      faces.push_back({polygon[0], polygon[k], polygon[k + 1]});
+    }
+    for (int corner : polygon) {
+      kept[static_cast<std::size_t>(corner)] = 1;
+    }
+  }
+  Real longestEdge = 0;
+  for (const auto& face : faces) {
+    for (int k = 0; k < 3; ++k) {
+      longestEdge = std::max(longestEdge, length(points[face[k]] - points[face[(k + 1) % 3]]));
+    }
+  }
+  for (int i = 0; i < count; ++i) {
+    if (kept[static_cast<std::size_t>(i)] != 0) {
+      continue;
+    }
+    const Vec3& p = points[static_cast<std::size_t>(i)];
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+      const std::array<int, 3> face = faces[f];
+      // A point inside a triangle is no farther than its longest edge from a corner.
+      if (length(p - points[face[0]]) > longestEdge) {
+        continue;
+      }
+      if (intersectSegmentTriangle(middle, (p - middle) * 2, points[face[0]], points[face[1]], points[face[2]]).hit) {
+        faces[f] = {face[0], face[1], i};
+        faces.push_back({face[1], face[2], i});
+        faces.push_back({face[2], face[0], i});
+        break;
+      }
+    }
+  }
+
+  std::vector<btVector3> nodes;
+  nodes.reserve(points.size());
+  for (const Vec3& p : points) {
+    nodes.emplace_back(btScalar(p.x), btScalar(p.y), btScalar(p.z));
+  }
+  auto* body = new btSoftBody(&info, count, nodes.data(), nullptr);
+  for (const auto& face : faces) {
+    // Each edge of a closed, consistently wound surface is run once each way: link it once.
+    for (int k = 0; k < 3; ++k) {
+      if (face[k] < face[(k + 1) % 3]) {
+        body->appendLink(face[k], face[(k + 1) % 3]);
+      }
+    }
+    body->appendFace(face[0], face[1], face[2]);
+  }
+  body->randomizeConstraints();  // as CreateEllipsoid
+  return body;
 }
 
 const char* algorithmName(Algorithm algorithm) {
@@ -101,7 +199,10 @@ SoftBallScene::SoftBallScene(const SceneSettings& settings) : m_settings(setting
   b.ground = std::make_unique<btRigidBody>(btRigidBody::btRigidBodyConstructionInfo(0, &b.groundMotion, &b.groundShape));
   m_world->addRigidBody(b.ground.get());
 
-  m_ball = btSoftBodyHelpers::CreateEllipsoid(info, atOrigin(0, 1.3, 0), btVector3(1, 1, 1), settings.ballResolution);
+  m_ball = settings.exactBallHull
+               ? createExactHullEllipsoid(info, atOrigin(0, 1.3, 0), btVector3(1, 1, 1), settings.ballResolution)
+               : btSoftBodyHelpers::CreateEllipsoid(info, atOrigin(0, 1.3, 0), btVector3(1, 1, 1),
+                                                    settings.ballResolution);
   m_ball->m_materials[0]->m_kLST = 0.5;
   m_ball->m_cfg.kDF = 0.5;
   m_ball->m_cfg.kPR = 50;
@@ -195,6 +296,8 @@ void SoftBallScene::makeToolDynamic(double mass, const btTransform& pose) {
   m_tool->updateInertiaTensor();
   m_world->addRigidBody(m_tool);
 }
+
+btRigidBody& SoftBallScene::ground() { return *m_bullet->ground; }
 
 ToolBox SoftBallScene::toolBox() const {
   ToolBox box;

@@ -20,6 +20,7 @@
 
 class btSoftRigidDynamicsWorld;
 class btSoftBody;
+struct btSoftBodyWorldInfo;
 class btRigidBody;
 class btCollisionShape;
 
@@ -56,6 +57,10 @@ struct SceneSettings {
   ToolShape tool = ToolShape::Plate;
   double timeStep = 1.0 / 60;  ///< s
   int ballResolution = 63;     ///< btSoftBodyHelpers::CreateEllipsoid's res: 63 gives 128 faces
+  /// Joins CreateEllipsoid's res + 3 points by btConvexHullComputer instead of CreateEllipsoid's
+  /// hull library, which gives a unit ball no more than about 2,360 faces whatever res asks for
+  /// (2,298 for res 2,047); this keeps every point: 2·(res + 1) faces, 65,536 for res 32,767.
+  bool exactBallHull = false;
   double settleSeconds = 2;
   int substeps = 1;  ///< internal steps per timeStep: stepSimulation(timeStep, substeps, timeStep / substeps)
   thintool::ToolOptions toolOptions;  ///< used when algorithm is ThinTool; ThinToolPaper sets swept = false
@@ -87,6 +92,7 @@ class SoftBallScene {
   btSoftRigidDynamicsWorld& world() { return *m_world; }
   btSoftBody& ball() { return *m_ball; }
   btRigidBody& toolBody() { return *m_tool; }
+  btRigidBody& ground();
   thintool::Tool* tool() { return m_thinTool; }
   const SceneSettings& settings() const { return m_settings; }
   ToolBox toolBox() const;
@@ -131,6 +137,12 @@ struct PressResult {
 };
 
 PressResult runPress(const PressSettings& settings);
+
+/// CreateEllipsoid's ball with every one of its res + 3 points a node: 2·res + 2 faces (63: 128,
+/// 2,047: 4,096, 32,767: 65,536). CreateEllipsoid's hull drops points from res 255 on and stops
+/// near 2,400 faces. The caller owns the body.
+btSoftBody* createExactHullEllipsoid(btSoftBodyWorldInfo& info, const btVector3& centre, const btVector3& radii,
+                                     int res);
 
 /// The ball's node positions and face indices, for the metrics.
 std::vector<Point> nodePositions(const btSoftBody& ball);

@@ -1,0 +1,396 @@
+// SPDX-License-Identifier: Zlib
+// Copyright (c) 2026 The ThinTool developers
+//
+// Stock Bullet's soft–rigid collision handler and ThinTool's on the same scene, in the same run:
+// scenes/SoftBallScene's plate (0.8 × 0.02 × 0.8 m, 576 ThinTool sample nodes) pressing a soft
+// ball of radius 1 made of btSoftBodyHelpers::CreateEllipsoid's points, 128 to 65,536 triangles,
+// with stock E's soft settings (margin 0.05, SDF voxel 0.02) for both, and with a 5 mm margin.
+// CreateEllipsoid itself cannot make the large balls (its hull library stops near 2,360 faces), so
+// the scene joins the same points by SceneSettings::exactBallHull. The ball floats, without gravity
+// and pressure, so that it keeps the shape it was built with until the plate arrives (no settling,
+// which would take seconds at 65k faces), and the plate comes down at 1 m/s in steps of 1/60 s,
+// from clear of the soft margin until its underside is 5 mm below the ball's top, each algorithm
+// answering the contact as in a run. With the 5 mm margin the last step is the first contact, so
+// both algorithms see the same ball; with 50 mm each has answered three steps of contact before.
+//
+// What is timed is the collision stage of the last of those steps for the tool's pairs with the
+// ball: what Bullet's dispatcher runs for them, through its near callback. For stock Bullet that is
+// btSoftRigidCollisionAlgorithm::processCollision, i.e. btSoftBody::defaultCollisionHandler (its
+// nodes against the plate's sparse distance field; the solver uses the contacts later). For
+// ThinTool it is its algorithm's processCollision for the tool's pairs (the swept proxy's, and the
+// tool body's own, which is idle): gather, detection, response and the solver holds, since in
+// ThinTool the response is part of the collision stage. The detectUs and responseUs counters are
+// ThinTool's own clock for its two parts (Tool::report), a cross-check of the measured time, and
+// detectUs alone is the detection stage.
+//
+// The stage is replayed, not stepped: the ball's nodes are captured when the dispatcher reaches
+// the tool's pairs in that step, and each iteration restores them near the tool (untimed) and runs
+// the pairs again. Stock's handler only appends contacts (cleared each iteration); ThinTool's moves
+// nodes (restored) and keeps memory from step to step (where it last left each node, which side it
+// came from), which the replay does not rewind: from the first replay on, each call sweeps the nodes
+// from where the previous call left them to their predicted positions, as in a run where the solver
+// moves nothing in between. The contacts counter is the replay's (stepContacts the real step's), and
+// stepUs is the real step's time for the same pairs (stepDetectUs and stepFacesNear ThinTool's
+// detection in it), where stock builds distance field cells that the replays find built. facesNear is what ThinTool gathered, facesInSweptBox the faces that meet
+// the plate's swept box grown by the margin, nodesNear the nodes in stock's query box. The allocs
+// counter counts operator new and Bullet's allocator per replay.
+//
+// Deviations from a run: no gravity or pressure, and the caches are warm (the replay revisits the
+// same data).
+
+#include <SoftBallScene.h>
+
+#include <thintool/thintool.h>
+
+#include <BulletCollision/BroadphaseCollision/btOverlappingPairCache.h>
+#include <BulletSoftBody/btSoftBody.h>
+#include <BulletSoftBody/btSoftRigidDynamicsWorld.h>
+#include <LinearMath/btAlignedAllocator.h>
+#include <btBulletDynamicsCommon.h>
+
+#include <benchmark/benchmark.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstdlib>
+#include <map>
+#include <tuple>
+#include <memory>
+#include <new>
+#include <utility>
+#include <vector>
+
+namespace {
+
+// Allocation counts: every operator new of the program, and Bullet's btAlignedAlloc (which calls
+// malloc directly). Single-threaded here; atomic so that a stray thread cannot corrupt it.
+std::atomic<long> allocations{0};
+
+void* countedMalloc(std::size_t size) {
+  allocations.fetch_add(1, std::memory_order_relaxed);
+  return std::malloc(size);
+}
+void countedFree(void* memory) { std::free(memory); }
+
+}  // namespace
+
+// GCC takes the replacement operators' free() of what their malloc() returned for a mismatch.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+#endif
+
+void* operator new(std::size_t size) {
+  allocations.fetch_add(1, std::memory_order_relaxed);
+  if (void* memory = std::malloc(size == 0 ? 1 : size)) {
+    return memory;
+  }
+  throw std::bad_alloc();
+}
+void* operator new[](std::size_t size) { return operator new(size); }
+void operator delete(void* memory) noexcept { std::free(memory); }
+void operator delete[](void* memory) noexcept { std::free(memory); }
+void operator delete(void* memory, std::size_t) noexcept { std::free(memory); }
+void operator delete[](void* memory, std::size_t) noexcept { std::free(memory); }
+void* operator new(std::size_t size, std::align_val_t alignment) {
+  allocations.fetch_add(1, std::memory_order_relaxed);
+  const std::size_t a = static_cast<std::size_t>(alignment);
+  if (void* memory = std::aligned_alloc(a, (size + a - 1) / a * a)) {
+    return memory;
+  }
+  throw std::bad_alloc();
+}
+void* operator new[](std::size_t size, std::align_val_t alignment) { return operator new(size, alignment); }
+void operator delete(void* memory, std::align_val_t) noexcept { std::free(memory); }
+void operator delete[](void* memory, std::align_val_t) noexcept { std::free(memory); }
+void operator delete(void* memory, std::size_t, std::align_val_t) noexcept { std::free(memory); }
+void operator delete[](void* memory, std::size_t, std::align_val_t) noexcept { std::free(memory); }
+
+namespace thintool::scenes {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+constexpr double kTimeStep = 1.0 / 60;
+constexpr double kSpeed = 1;              // m/s: 16.7 mm a step
+constexpr double kFinalDepth = 0.005;     // m: the underside below the ball's top at the end
+constexpr int kPressSteps = 4;            // the first starts 62 mm above the top, beyond the 50 mm margin
+constexpr double kRestoreReach = 0.3;     // m around the plate's swept box: nodes restored each replay
+
+// The collision stage of the last press step, captured by the dispatcher's near callback. Bullet's
+// callback is a plain function, so the capture in progress is reached through this pointer.
+struct Replay;
+Replay* capturing = nullptr;
+
+struct Replay {
+  std::unique_ptr<SoftBallScene> scene;
+  std::vector<btBroadphasePair*> pairs;  // the ball's pairs with the tool (and ThinTool's proxy)
+  std::vector<btVector3> x, q, v;        // every node at the collision stage
+  std::vector<int> nearNodes;            // restored before each replay
+  double stepMicroseconds = 0;
+  long stepContacts = 0;
+  double stepDetectMicroseconds = 0;  // ThinTool's own clock in the real step
+  double stepFacesNear = 0;
+  int nodesNear = 0;         // nodes inside the stock handler's query box
+  int facesInSweptBox = 0;   // faces meeting the plate's swept box grown by the margin
+
+  static void nearCallback(btBroadphasePair& pair, btCollisionDispatcher& dispatcher, const btDispatcherInfo& info) {
+    Replay& self = *capturing;
+    const btSoftBody* ball = &self.scene->ball();
+    const void* ground = &self.scene->ground();
+    const void* a = pair.m_pProxy0->m_clientObject;
+    const void* b = pair.m_pProxy1->m_clientObject;
+    // The ball's pairs but its pair with the ground (which exists, though the two do not touch).
+    const bool withBall = (a == ball || b == ball) && a != ground && b != ground;
+    if (withBall && self.pairs.empty()) {
+      const int n = ball->m_nodes.size();
+      self.x.resize(n);
+      self.q.resize(n);
+      self.v.resize(n);
+      for (int i = 0; i < n; ++i) {
+        self.x[i] = ball->m_nodes[i].m_x;
+        self.q[i] = ball->m_nodes[i].m_q;
+        self.v[i] = ball->m_nodes[i].m_v;
+      }
+    }
+    const auto start = Clock::now();
+    btCollisionDispatcher::defaultNearCallback(pair, dispatcher, info);
+    if (withBall) {
+      self.stepMicroseconds += std::chrono::duration<double, std::micro>(Clock::now() - start).count();
+      self.pairs.push_back(&pair);
+    }
+  }
+
+  Replay(Algorithm algorithm, int faces, double margin) {
+    SceneSettings settings;
+    settings.algorithm = algorithm;
+    settings.ballResolution = faces / 2 - 1;  // CreateEllipsoid's points make 2·(res + 1) faces
+    settings.exactBallHull = true;            // CreateEllipsoid's own hull stops near 2,360 faces
+    settings.timeStep = kTimeStep;
+    // The plate's faces are 0.802 m wide with its 1 mm margin: 16 cells a side, 576 nodes, as
+    // DetectionBench's plate (0.05 would make 17 and 646).
+    settings.toolOptions.sampling.spacing = 0.051;
+    scene = std::make_unique<SoftBallScene>(settings);
+    scene->ball().getCollisionShape()->setMargin(btScalar(margin));  // ThinTool's skin follows it
+    // Without gravity nothing settles the ball, and its pressure would inflate it by 0.2 m in the
+    // four steps; without pressure it keeps the shape it was built with, held by its links.
+    scene->ball().m_cfg.kPR = 0;
+    btSoftRigidDynamicsWorld& world = scene->world();
+    world.setGravity(btVector3(0, 0, 0));
+    world.getWorldInfo().m_gravity = btVector3(0, 0, 0);
+
+    const double halfThickness = scene->toolBox().halfExtents.y;
+    const double finalHeight = scene->ballTop() - kFinalDepth + halfThickness;
+    const double stepLength = kSpeed * kTimeStep;
+    auto poseAt = [&](int step) {
+      return btTransform(btQuaternion::getIdentity(), scene->aboveBall(finalHeight + (kPressSteps - step) * stepLength));
+    };
+    if (thintool::Tool* tool = scene->tool()) {
+      tool->resetMotion();  // from where the tool was parked: a jump, not a sweep
+    }
+    scene->step(poseAt(0));
+    for (int step = 1; step < kPressSteps; ++step) {
+      scene->step(poseAt(step));
+    }
+    auto* dispatcher = static_cast<btCollisionDispatcher*>(world.getDispatcher());
+    capturing = this;
+    dispatcher->setNearCallback(&Replay::nearCallback);
+    scene->step(poseAt(kPressSteps));
+    dispatcher->setNearCallback(&btCollisionDispatcher::defaultNearCallback);
+    capturing = nullptr;
+    if (thintool::Tool* tool = scene->tool()) {
+      const thintool::ToolDiagnostics& d = tool->report().diagnostics;
+      stepContacts = static_cast<long>(d.detection.colliding);
+      stepDetectMicroseconds = d.detectionMicroseconds;
+      stepFacesNear = d.detection.facesGathered;
+    } else {
+      stepContacts = countStockContacts();
+    }
+
+    // Back to the collision stage. The trees' volumes still are those of that step's prediction.
+    btSoftBody& ball = scene->ball();
+    for (int i = 0; i < ball.m_nodes.size(); ++i) {
+      ball.m_nodes[i].m_x = x[i];
+      ball.m_nodes[i].m_q = q[i];
+      ball.m_nodes[i].m_v = v[i];
+    }
+    clearContacts();
+
+    btVector3 boxMin, boxMax, lastMin, lastMax;
+    btCollisionShape& toolShape = *scene->toolBody().getCollisionShape();
+    toolShape.getAabb(poseAt(kPressSteps - 1), boxMin, boxMax);
+    toolShape.getAabb(poseAt(kPressSteps), lastMin, lastMax);
+    boxMin.setMin(lastMin);
+    boxMax.setMax(lastMax);
+    const btVector3 reach(kRestoreReach, kRestoreReach, kRestoreReach);
+    const btVector3 stockReach = btVector3(1, 1, 1) * btScalar(margin);
+    for (int i = 0; i < ball.m_nodes.size(); ++i) {
+      const btVector3& p = x[i];
+      if (p.x() >= boxMin.x() - reach.x() && p.y() >= boxMin.y() - reach.y() && p.z() >= boxMin.z() - reach.z() &&
+          p.x() <= boxMax.x() + reach.x() && p.y() <= boxMax.y() + reach.y() && p.z() <= boxMax.z() + reach.z()) {
+        nearNodes.push_back(i);
+      }
+      const btVector3 lo = lastMin - stockReach;
+      const btVector3 hi = lastMax + stockReach;
+      if (p.x() >= lo.x() && p.y() >= lo.y() && p.z() >= lo.z() && p.x() <= hi.x() && p.y() <= hi.y() &&
+          p.z() <= hi.z()) {
+        ++nodesNear;
+      }
+    }
+    const btVector3 sweptMin = boxMin - stockReach;
+    const btVector3 sweptMax = boxMax + stockReach;
+    for (int f = 0; f < ball.m_faces.size(); ++f) {
+      btVector3 faceMin = ball.m_faces[f].m_n[0]->m_x;
+      btVector3 faceMax = faceMin;
+      for (int k = 1; k < 3; ++k) {
+        faceMin.setMin(ball.m_faces[f].m_n[k]->m_x);
+        faceMax.setMax(ball.m_faces[f].m_n[k]->m_x);
+      }
+      if (faceMin.x() <= sweptMax.x() && faceMin.y() <= sweptMax.y() && faceMin.z() <= sweptMax.z() &&
+          faceMax.x() >= sweptMin.x() && faceMax.y() >= sweptMin.y() && faceMax.z() >= sweptMin.z()) {
+        ++facesInSweptBox;
+      }
+    }
+  }
+
+  long countStockContacts() const {
+    long count = 0;
+    const btSoftBody& ball = scene->ball();
+    for (int i = 0; i < ball.m_rcontacts.size(); ++i) {
+      count += ball.m_rcontacts[i].m_cti.m_colObj == &scene->toolBody() ? 1 : 0;
+    }
+    return count;
+  }
+
+  // Empties the ball's contact array and keeps its memory, as Bullet's predictMotion does (whose
+  // resize(0) copies an uninitialised RContact, which GCC warns of when it is inlined here).
+  void clearContacts() {
+    btSoftBody& ball = scene->ball();
+    while (ball.m_rcontacts.size() > 0) {
+      ball.m_rcontacts.pop_back();
+    }
+  }
+
+  void restore() {
+    btSoftBody& ball = scene->ball();
+    for (int i : nearNodes) {
+      ball.m_nodes[i].m_x = x[i];
+    }
+    clearContacts();
+  }
+
+  // Runs the pairs as the dispatcher does; returns the wall time (s).
+  double runPairs() {
+    btSoftRigidDynamicsWorld& world = scene->world();
+    auto& dispatcher = *static_cast<btCollisionDispatcher*>(world.getDispatcher());
+    const btDispatcherInfo& info = world.getDispatchInfo();
+    const btNearCallback callback = dispatcher.getNearCallback();
+    const auto start = Clock::now();
+    for (btBroadphasePair* pair : pairs) {
+      callback(*pair, dispatcher, info);
+    }
+    return std::chrono::duration<double>(Clock::now() - start).count();
+  }
+
+  // Whether any node the replay does not restore was moved.
+  bool movedFarNodes() const {
+    const btSoftBody& ball = scene->ball();
+    std::vector<char> restored(x.size(), 0);
+    for (int i : nearNodes) {
+      restored[static_cast<std::size_t>(i)] = 1;
+    }
+    for (int i = 0; i < ball.m_nodes.size(); ++i) {
+      if (restored[static_cast<std::size_t>(i)] == 0 && ball.m_nodes[i].m_x != x[i]) {
+        return true;
+      }
+    }
+    return false;
+  }
+};
+
+// Built once per process: a 65k-face scene takes seconds, and the benchmark function runs several
+// times for each row. Every replay starts from the captured stage, so reuse changes nothing.
+Replay& replayFor(Algorithm algorithm, int faces, int marginMillimetres) {
+  static std::map<std::tuple<Algorithm, int, int>, std::unique_ptr<Replay>> replays;
+  std::unique_ptr<Replay>& replay = replays[{algorithm, faces, marginMillimetres}];
+  if (replay == nullptr) {
+    btAlignedAllocSetCustom(&countedMalloc, &countedFree);
+    replay = std::make_unique<Replay>(algorithm, faces, marginMillimetres / 1000.0);
+  }
+  return *replay;
+}
+
+void run(benchmark::State& state, Algorithm algorithm) {
+  Replay& replay = replayFor(algorithm, static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+  thintool::Tool* tool = replay.scene->tool();
+  if (replay.scene->ball().m_faces.size() != state.range(0)) {
+    state.SkipWithError("the ball does not have the faces asked for");
+    return;
+  }
+  if (replay.pairs.empty()) {
+    state.SkipWithError("no pair between the tool and the ball in the captured step");
+    return;
+  }
+  double contacts = 0;
+  double facesNear = 0;
+  double tests = 0;
+  double detect = 0;
+  double respond = 0;
+  long allocated = 0;
+  for (auto _ : state) {
+    replay.restore();
+    const long before = allocations.load(std::memory_order_relaxed);
+    state.SetIterationTime(replay.runPairs());
+    allocated += allocations.load(std::memory_order_relaxed) - before;
+    if (tool != nullptr) {
+      const thintool::ToolDiagnostics& d = tool->report().diagnostics;
+      contacts += d.detection.colliding;
+      facesNear += d.detection.facesGathered;
+      tests += d.detection.triangleTests;
+      detect += d.detectionMicroseconds;
+      respond += d.responseMicroseconds;
+    } else {
+      contacts += static_cast<double>(replay.countStockContacts());
+    }
+  }
+  if (replay.movedFarNodes()) {
+    state.SkipWithError("the collision stage moved a node the replay does not restore");
+    return;
+  }
+  const double n = static_cast<double>(state.iterations());
+  const btSoftBody& ball = replay.scene->ball();
+  state.counters["softFaces"] = ball.m_faces.size();
+  state.counters["pairs"] = static_cast<double>(replay.pairs.size());
+  state.counters["contacts"] = contacts / n;
+  state.counters["stepContacts"] = static_cast<double>(replay.stepContacts);
+  state.counters["stepUs"] = replay.stepMicroseconds;
+  state.counters["allocs"] = static_cast<double>(allocated) / n;
+  if (tool != nullptr) {
+    state.counters["toolNodes"] = tool->nodeCount();
+    state.counters["facesNear"] = facesNear / n;
+    state.counters["facesInSweptBox"] = replay.facesInSweptBox;
+    state.counters["tests"] = tests / n;
+    state.counters["detectUs"] = detect / n;
+    state.counters["responseUs"] = respond / n;
+    state.counters["stepDetectUs"] = replay.stepDetectMicroseconds;
+    state.counters["stepFacesNear"] = replay.stepFacesNear;
+  } else {
+    state.counters["nodesNear"] = replay.nodesNear;
+  }
+}
+
+void StockHandler(benchmark::State& state) { run(state, Algorithm::StockE); }
+void ThinToolHandler(benchmark::State& state) { run(state, Algorithm::ThinTool); }
+void ThinToolPaperHandler(benchmark::State& state) { run(state, Algorithm::ThinToolPaper); }
+
+// Arguments: the ball's faces (128 is the paper's ball) and its margin in mm, ThinTool's skin: stock
+// E's 50 mm, and 5 mm (DetectionBench's skin) for both algorithms at two sizes, where the margin's
+// share of the cost shows.
+#define THINTOOL_HANDLER_SIZES                                                                     \
+  ->Args({128, 50})->Args({1024, 50})->Args({4096, 50})->Args({16384, 50})->Args({65536, 50}) \
+      ->Args({4096, 5})->Args({65536, 5})
+BENCHMARK(StockHandler) THINTOOL_HANDLER_SIZES->UseManualTime()->Unit(benchmark::kMicrosecond);
+BENCHMARK(ThinToolHandler) THINTOOL_HANDLER_SIZES->UseManualTime()->Unit(benchmark::kMicrosecond);
+BENCHMARK(ThinToolPaperHandler) THINTOOL_HANDLER_SIZES->UseManualTime()->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+}  // namespace thintool::scenes
