@@ -95,20 +95,20 @@ btSoftBody* makeSoftBody(const SceneSpec& scene, btSoftBodyWorldInfo& info) {
   const SoftBodySpec& soft = scene.soft;
   switch (soft.mesh) {
     case SoftBodySpec::Mesh::Ellipsoid:
+      if (soft.exactHull) {
+        return scenes::createExactHullEllipsoid(info, toBullet(soft.centre), toBullet(soft.radius), soft.resolution);
+      }
       return btSoftBodyHelpers::CreateEllipsoid(info, toBullet(soft.centre), toBullet(soft.radius), soft.resolution);
-    case SoftBodySpec::Mesh::Sphere:
     case SoftBodySpec::Mesh::Obj: {
-      const bool sphere = soft.mesh == SoftBodySpec::Mesh::Sphere;
-      const TriangleMesh mesh = sphere ? sphereMesh(soft.faces) : soft.objMesh;
-      const Vec3 scale = sphere ? soft.radius : Vec3{soft.scale, soft.scale, soft.scale};
       std::vector<btScalar> coordinates;
-      for (const Vec3& v : mesh.vertices) {
-        const Vec3 p = Vec3{v.x * scale.x, v.y * scale.y, v.z * scale.z} + soft.centre;
+      for (const Vec3& v : soft.objMesh.vertices) {
+        const Vec3 p = v * soft.scale + soft.centre;
         coordinates.insert(coordinates.end(), {btScalar(p.x), btScalar(p.y), btScalar(p.z)});
       }
       std::vector<int> indices;
-      for (const Triangle& t : mesh.triangles) indices.insert(indices.end(), t.begin(), t.end());
-      return btSoftBodyHelpers::CreateFromTriMesh(info, coordinates.data(), indices.data(), int(mesh.triangles.size()));
+      for (const Triangle& t : soft.objMesh.triangles) indices.insert(indices.end(), t.begin(), t.end());
+      return btSoftBodyHelpers::CreateFromTriMesh(info, coordinates.data(), indices.data(),
+                                                  int(soft.objMesh.triangles.size()));
     }
     case SoftBodySpec::Mesh::Sheet:
       break;

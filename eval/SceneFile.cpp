@@ -175,21 +175,12 @@ TrajectorySpec readTrajectory(const JsonField& field, const std::string& baseFol
 
 SoftBodySpec readSoftBody(const JsonField& field, const std::string& baseFolder) {
   SoftBodySpec soft;
-  const std::string mesh = field.at("mesh").oneOf({"ellipsoid", "sphere", "obj", "sheet"});
-  if (mesh == "sphere") {
-    field.allowOnly({"mesh", "faces", "centre", "radius", "material"});
-    soft.mesh = SoftBodySpec::Mesh::Sphere;
-    soft.faces = field.integer("faces", soft.faces);
-    if (soft.faces < 16 || soft.faces > 1 << 22 || sphereBands(soft.faces) == 0) {
-      field.at("faces").fail("expected an even number of faces, 16 to 4194304, that splits into 2 x segments x bands"
-                             " with at least 3 bands and 4 segments (2 x 4^k and 8 x 4^k always do)");
-    }
-    soft.radius = vec3Or(field, "radius", soft.radius);
-    if (!(soft.radius.x > 0 && soft.radius.y > 0 && soft.radius.z > 0)) field.at("radius").fail("expected radii greater than 0 m");
-  } else if (mesh == "ellipsoid") {
-    field.allowOnly({"mesh", "resolution", "centre", "radius", "material"});
+  const std::string mesh = field.at("mesh").oneOf({"ellipsoid", "obj", "sheet"});
+  if (mesh == "ellipsoid") {
+    field.allowOnly({"mesh", "resolution", "exact_hull", "centre", "radius", "material"});
     soft.mesh = SoftBodySpec::Mesh::Ellipsoid;
     soft.resolution = field.integer("resolution", soft.resolution);
+    soft.exactHull = field.boolean("exact_hull", soft.exactHull);
     if (soft.resolution < 4 || soft.resolution > 1 << 20) field.at("resolution").fail("expected 4 to 1048576");
     soft.radius = vec3Or(field, "radius", soft.radius);
     if (!(soft.radius.x > 0 && soft.radius.y > 0 && soft.radius.z > 0)) field.at("radius").fail("expected radii greater than 0 m");
@@ -266,47 +257,6 @@ JsonValue& valueAt(JsonValue& root, const std::string& path) {
 }
 
 }  // namespace
-
-int sphereBands(int faces) {
-  if (faces % 2 != 0) return 0;
-  const int half = faces / 2;  // segments x bands
-  // The split nearest segments = 2 x bands, for triangles about as wide as they are tall.
-  const int ideal = int(std::lround(std::sqrt(half / 2.0)));
-  for (int offset = 0; offset <= ideal; ++offset) {
-    for (int bands : {ideal - offset, ideal + offset}) {
-      if (bands >= 3 && half % bands == 0 && half / bands >= 4) return bands;
-    }
-  }
-  return 0;
-}
-
-TriangleMesh sphereMesh(int faces) {
-  const int bands = sphereBands(faces);
-  const int segments = faces / 2 / bands;
-  TriangleMesh mesh;
-  // `bands` rings of vertices between the poles: bands - 1 strips of quads and the two pole fans.
-  mesh.vertices.push_back({1, 0, 0});
-  for (int ring = 1; ring <= bands; ++ring) {
-    const double polar = kPi * ring / (bands + 1);
-    for (int s = 0; s < segments; ++s) {
-      const double around = 2 * kPi * s / segments;
-      mesh.vertices.push_back({std::cos(polar), std::sin(polar) * std::cos(around), std::sin(polar) * std::sin(around)});
-    }
-  }
-  mesh.vertices.push_back({-1, 0, 0});
-  const int last = int(mesh.vertices.size()) - 1;
-  auto at = [&](int ring, int s) { return 1 + (ring - 1) * segments + (s % segments); };
-  // Counter-clockwise seen from outside.
-  for (int s = 0; s < segments; ++s) mesh.triangles.push_back({0, at(1, s), at(1, s + 1)});
-  for (int ring = 1; ring < bands; ++ring) {
-    for (int s = 0; s < segments; ++s) {
-      mesh.triangles.push_back({at(ring, s), at(ring + 1, s), at(ring + 1, s + 1)});
-      mesh.triangles.push_back({at(ring, s), at(ring + 1, s + 1), at(ring, s + 1)});
-    }
-  }
-  for (int s = 0; s < segments; ++s) mesh.triangles.push_back({last, at(bands, s + 1), at(bands, s)});
-  return mesh;
-}
 
 const char* algorithmKey(AlgorithmKind kind) {
   switch (kind) {

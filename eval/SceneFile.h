@@ -33,17 +33,15 @@ const char* algorithmKey(AlgorithmKind kind);
 bool isStock(AlgorithmKind kind);
 
 struct SoftBodySpec {
-  enum class Mesh { Ellipsoid, Sphere, Obj, Sheet };
+  enum class Mesh { Ellipsoid, Obj, Sheet };
   Mesh mesh = Mesh::Ellipsoid;
-  // Ellipsoid: Bullet's CreateEllipsoid (63 gives the paper's 128 faces). Its hull of `resolution`
-  // points saturates near 2,400 faces, so larger bodies use Sphere.
+  // Ellipsoid: Bullet's CreateEllipsoid at `resolution` (63 gives the paper's 128 faces). Its hull
+  // drops points from res 255 on and stops near 2,400 faces; exactHull keeps every point as a
+  // node: 2·(res + 1) faces, 4,096 for res 2,047 and 65,536 for res 32,767.
   int resolution = 63;
-  // Sphere: a latitude–longitude mesh of exactly `faces` triangles, its poles on the x axis so that
-  // a tool coming from above meets even triangles: `bands` rings of `segments` vertices,
-  // faces = 2·segments·bands with segments near 2·bands; 128 to 65,536 in powers of 2 all split.
-  int faces = 4096;
+  bool exactHull = false;
   Vec3 centre{0, 1.3, 0};   ///< m (also the OBJ's translation, and the sheet's centre)
-  Vec3 radius{1, 1, 1};     ///< m, ellipsoid and sphere
+  Vec3 radius{1, 1, 1};     ///< m
   // OBJ: a closed surface mesh, scaled then moved to centre.
   std::string objFile;      ///< as written in the file
   double scale = 1;
@@ -133,11 +131,6 @@ SceneSpec parseScene(const std::string& text, const std::string& sourceName, con
 
 /// A piece's convex solid in its own frame, for the ground truth and for building the Bullet shape.
 ConvexSolid solidOf(const ToolPieceSpec& piece);
-
-/// The sphere mesh's band count for a face count, or 0 when it does not split (SoftBodySpec::faces).
-int sphereBands(int faces);
-/// The unit sphere of that many faces, poles on the x axis, counter-clockwise seen from outside.
-TriangleMesh sphereMesh(int faces);
 
 /// The tool's pose at time t (s) of its trajectory, and when the trajectory stops moving.
 Pose poseAt(const TrajectorySpec& trajectory, double time);

@@ -19,9 +19,9 @@ mkdir -p "$out"
 algorithms=stock-A,stock-B,stock-E,ray-only,paper,swept
 steps=1/30,1/60,1/240,1/1000
 speeds=0.1,1,5,20,50
-sizes=128,512,2048,4096,16384,65536   # soft faces
+resolutions=63,255,1023,2047,8191,32767   # with exact_hull: 128, 512, 2,048, 4,096, 16,384, 65,536 faces
 if [ "$quick" = "--quick" ]; then
-  algorithms=stock-E,swept; steps=1/60; speeds=1,20; sizes=128,512
+  algorithms=stock-E,swept; steps=1/60; speeds=1,20; resolutions=63,255
 fi
 
 # The needle's shipped trajectory is a recorded one; the matrix drives it at constant speeds.
@@ -40,9 +40,9 @@ for scene in plate_press needle_press; do
 done
 
 # 2. Cost against the soft body's size (the paper's Fig. 11): the plate at 1 m/s, 1/60 s, on
-#    latitude-longitude spheres of 128 to 65,536 faces (Bullet's ellipsoid stops near 2,400).
-$run eval/scenes/plate_press.json --set thintool.force=true --set 'soft={"mesh":"sphere"}' \
-  --sweep "algorithm=$algorithms" --sweep "soft.faces=$sizes" \
+#    Bullet's ellipsoid of 128 to 65,536 faces, every point of its hull kept.
+$run eval/scenes/plate_press.json --set thintool.force=true --set soft.exact_hull=true \
+  --sweep "algorithm=$algorithms" --sweep "soft.resolution=$resolutions" \
   --csv "$out/plate_press-mesh.csv" > /dev/null
 
 python3 scripts/study-report.py "$out" docs/study.md

@@ -201,30 +201,26 @@ TEST(SceneFile, CompoundToolsListTheirPartsWithOffsets) {
 }  // namespace
 }  // namespace thintool::eval
 
+
 namespace thintool::eval {
 namespace {
 
-TEST(SceneFile, SphereMeshesHaveExactlyTheFacesAskedForAndAreClosedAndOutward) {
-  for (int faces : {128, 512, 2048, 4096, 16384, 65536}) {
-    SCOPED_TRACE(faces);
-    const TriangleMesh mesh = sphereMesh(faces);
-    ASSERT_EQ(int(mesh.triangles.size()), faces);
-    EXPECT_EQ(int(mesh.vertices.size()), faces / 2 + 2);  // a closed genus-0 surface: F = 2V - 4
-    if (faces <= 4096) {
-      EXPECT_NEAR(windingNumber({0.1, 0.2, -0.1}, mesh.vertices, mesh.triangles), 1, 1e-9);  // outward
-      EXPECT_NEAR(windingNumber({1.5, 0, 0}, mesh.vertices, mesh.triangles), 0, 1e-9);
-    }
-  }
-  EXPECT_EQ(sphereBands(127), 0);
+TEST(SceneFile, TheExactHullIsAnEllipsoidOption) {
+  const SceneSpec scene = parseScene(
+      R"({"soft": {"mesh": "ellipsoid", "resolution": 2047, "exact_hull": true}, "tools": [{"shape": {"type": "box",
+      "half_extents": [1, 1, 1]}, "trajectory": {"type": "constant_velocity", "start": [0, 5, 0]}}]})",
+      "scene.json", kScenes);
+  EXPECT_TRUE(scene.soft.exactHull);
+  EXPECT_EQ(scene.soft.resolution, 2047);
   const std::string error = [] {
     try {
-      parseScene(R"({"soft": {"mesh": "sphere", "faces": 22}, "tools": []})", "scene.json", kScenes);
+      parseScene(R"({"soft": {"mesh": "ellipsoid", "exact_hull": 1}, "tools": []})", "scene.json", kScenes);
     } catch (const Error& e) {
       return std::string(e.what());
     }
     return std::string();
   }();
-  EXPECT_NE(error.find("soft.faces"), std::string::npos) << error;
+  EXPECT_NE(error.find("soft.exact_hull"), std::string::npos) << error;
 }
 
 }  // namespace
