@@ -109,6 +109,27 @@ void gatherPatch(btSoftBody& softBody, const Aabb& worldBox, PairState& state) {
   walk(softBody.m_fdbvt.m_root, state.traversalStack, [&](const Aabb& box) { return box.overlaps(worldBox); },
        [&](const btDbvtNode* leaf) {
          const auto* face = static_cast<const btSoftBody::Face*>(leaf->data);
+         // Bullet grows its leaf volumes by the soft margin and the face's velocity, so with a
+         // realistic 50 mm margin they overlap the box from several faces away: the face's own
+         // motion (start, predicted end, and where ThinTool left its nodes last step) decides.
+         // A face with a non-finite node is gathered all the same: detection skips and counts it.
+         Aabb motionBox;
+         bool finite = true;
+         for (int k = 0; k < 3; ++k) {
+           const btSoftBody::Node* node = face->m_n[k];
+           const Vec3 end = toVec3(node->m_x);
+           const Vec3 start = toVec3(node->m_q);
+           finite = finite && isFinite(end) && isFinite(start);
+           motionBox.include(end);
+           motionBox.include(start);
+           const Index id = nodeIndex(softBody, node);
+           if (state.lastStep[id] == state.step) {
+             motionBox.include(state.lastPositions[id]);
+           }
+         }
+         if (finite && !motionBox.overlaps(worldBox)) {
+           return true;
+         }
          std::array<Index, 3> corners;
          for (int k = 0; k < 3; ++k) {
            const btSoftBody::Node* node = face->m_n[k];

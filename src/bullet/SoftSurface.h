@@ -26,7 +26,8 @@ void ensureFaceTree(btSoftBody& softBody);
 /// the surface is open (some edge does not have exactly two faces) or encloses no volume.
 int surfaceOrientation(const btSoftBody& softBody);
 
-/// Fills state.patch with the faces whose tree volumes overlap worldBox, and their nodes.
+/// Fills state.patch with the faces whose motion in the step overlaps worldBox, and their nodes.
+/// state.lastStep and state.lastPositions must be sized to the soft body's nodes.
 void gatherPatch(btSoftBody& softBody, const Aabb& worldBox, PairState& state);
 
 /// Clears the soft node -> patch vertex map for the next gather.
