@@ -242,10 +242,27 @@ RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
     options.settled(low, high);
   }
 
+  // Trajectories that start relative to the settled body.
+  std::vector<TrajectorySpec> trajectories;
+  double softTop = -std::numeric_limits<double>::max();
+  for (int i = 0; i < soft.m_nodes.size(); ++i) softTop = std::max(softTop, double(soft.m_nodes[i].m_x.y()));
+  for (const ToolSpec& tool : scene.tools) {
+    TrajectorySpec trajectory = tool.trajectory;
+    if (trajectory.startClearance) {
+      const Pose start = poseAt(trajectory, 0);
+      double lowest = std::numeric_limits<double>::max();
+      for (const ToolPieceSpec& piece : tool.pieces) {
+        for (const Vec3& v : solidOf(piece).vertices) lowest = std::min(lowest, start.apply(piece.offset.apply(v)).y);
+      }
+      trajectory.start.y += softTop + variant.margin + *trajectory.startClearance - lowest;
+    }
+    trajectories.push_back(trajectory);
+  }
+
   // Out of the parking place: a jump, not a motion for swept detection to sweep.
   std::vector<Pose> toolPoses;
   for (std::size_t t = 0; t < scene.tools.size(); ++t) {
-    const Pose start = poseAt(scene.tools[t].trajectory, 0);
+    const Pose start = poseAt(trajectories[t], 0);
     w.motions[t]->setWorldTransform(toBullet(start));
     if (w.thinTools[t] != nullptr) w.thinTools[t]->resetMotion();
     toolPoses.push_back(start);
@@ -270,7 +287,7 @@ RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
   for (int i = 1; i <= steps; ++i) {
     const double time = i * scene.timeStep;
     for (std::size_t t = 0; t < scene.tools.size(); ++t) {
-      toolPoses[t] = poseAt(scene.tools[t].trajectory, time);
+      toolPoses[t] = poseAt(trajectories[t], time);
       w.motions[t]->setWorldTransform(toBullet(toolPoses[t]));
     }
     StepSample sample;

@@ -136,7 +136,7 @@ TrajectorySpec readTrajectory(const JsonField& field, const std::string& baseFol
   TrajectorySpec trajectory;
   const std::string type = field.at("type").oneOf({"constant_velocity", "waypoints", "csv"});
   if (type == "constant_velocity") {
-    field.allowOnly({"type", "start", "rotation", "direction", "speed", "distance"});
+    field.allowOnly({"type", "start", "start_clearance", "rotation", "direction", "speed", "distance"});
     trajectory.kind = TrajectorySpec::Kind::ConstantVelocity;
     trajectory.start = toVec3(field.at("start").vec3());
     trajectory.rotation = vec3Or(field, "rotation", {});
@@ -144,6 +144,7 @@ TrajectorySpec readTrajectory(const JsonField& field, const std::string& baseFol
     trajectory.direction = normalizedOrZero(direction);
     if (lengthSquared(trajectory.direction) == 0) field.at("direction").fail("expected a direction, not [0, 0, 0]");
     trajectory.speed = field.positive("speed", trajectory.speed);
+    if (field.has("start_clearance")) trajectory.startClearance = field.at("start_clearance").number();
     trajectory.distance = field.number("distance", trajectory.distance);
     if (!(trajectory.distance >= 0)) field.at("distance").fail("expected a distance of 0 m or more");
   } else if (type == "waypoints") {

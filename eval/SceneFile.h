@@ -13,6 +13,7 @@
 #include "ObjMesh.h"
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -80,6 +81,10 @@ struct TrajectorySpec {
   Vec3 direction{0, -1, 0};   ///< unit
   double speed = 1;           ///< m/s
   double distance = 1;        ///< m
+  /// When set (m), start.y is replaced, once the soft body has settled, by the height that puts
+  /// the tool's lowest point this far above the soft body's top plus its collision margin, so
+  /// that every algorithm's soft settings (a 0.25 m margin lifts the ball) start the same way.
+  std::optional<double> startClearance;
   struct Waypoint {
     double time = 0;  ///< s
     Vec3 position;    ///< m

@@ -25,7 +25,7 @@ if [ "$quick" = "--quick" ]; then
 fi
 
 # The needle's shipped trajectory is a recorded one; the matrix drives it at constant speeds.
-needle_path='{"type":"constant_velocity","start":[0,2.083,0],"direction":[0,-1,0],"distance":1.1}'
+needle_path='{"type":"constant_velocity","start":[0,2.083,0],"start_clearance":0.1,"direction":[0,-1,0],"distance":1.1}'
 
 # 1. The matrix: the paper's 128-face ball; both tools, every algorithm, step and speed. The force
 #    error is against swept detection at 1/1000 s on the 512-face ball at the same speed.

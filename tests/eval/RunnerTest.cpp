@@ -87,3 +87,21 @@ TEST(Runner, TheExactHullBallHasTwiceResolutionPlusTwoFaces) {
 
 }  // namespace
 }  // namespace thintool::eval
+
+namespace thintool::eval {
+namespace {
+
+TEST(Runner, AStartClearanceStartsEveryAlgorithmAboveItsOwnSettledBody) {
+  // Stock A's 0.25 m margin lifts the settled ball above a start height fixed for stock E's 0.05 m.
+  for (const char* algorithm : {"algorithm=stock-A", "algorithm=swept"}) {
+    SCOPED_TRACE(algorithm);
+    const RunResult result = run("plate_press.json", {algorithm, "tools[0].trajectory.speed=0.5", "step.duration=0.1"});
+    ASSERT_FALSE(result.samples.empty());
+    EXPECT_FALSE(result.samples.front().toolInside);
+    EXPECT_EQ(result.truth.toolInsideSteps, 0);
+    EXPECT_EQ(result.truth.maxPenetration, 0);
+  }
+}
+
+}  // namespace
+}  // namespace thintool::eval
