@@ -38,6 +38,7 @@
 // Deviations from a run: no gravity or pressure, and the caches are warm (the replay revisits the
 // same data).
 
+#include <CountingAllocator.h>
 #include <SoftBallScene.h>
 
 #include <thintool/thintool.h>
@@ -50,60 +51,13 @@
 
 #include <benchmark/benchmark.h>
 
-#include <atomic>
 #include <chrono>
 #include <cstdlib>
 #include <map>
 #include <tuple>
 #include <memory>
-#include <new>
 #include <utility>
 #include <vector>
-
-namespace {
-
-// Allocation counts: every operator new of the program, and Bullet's btAlignedAlloc (which calls
-// malloc directly). Single-threaded here; atomic so that a stray thread cannot corrupt it.
-std::atomic<long> allocations{0};
-
-void* countedMalloc(std::size_t size) {
-  allocations.fetch_add(1, std::memory_order_relaxed);
-  return std::malloc(size);
-}
-void countedFree(void* memory) { std::free(memory); }
-
-}  // namespace
-
-// GCC takes the replacement operators' free() of what their malloc() returned for a mismatch.
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-#endif
-
-void* operator new(std::size_t size) {
-  allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* memory = std::malloc(size == 0 ? 1 : size)) {
-    return memory;
-  }
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t size) { return operator new(size); }
-void operator delete(void* memory) noexcept { std::free(memory); }
-void operator delete[](void* memory) noexcept { std::free(memory); }
-void operator delete(void* memory, std::size_t) noexcept { std::free(memory); }
-void operator delete[](void* memory, std::size_t) noexcept { std::free(memory); }
-void* operator new(std::size_t size, std::align_val_t alignment) {
-  allocations.fetch_add(1, std::memory_order_relaxed);
-  const std::size_t a = static_cast<std::size_t>(alignment);
-  if (void* memory = std::aligned_alloc(a, (size + a - 1) / a * a)) {
-    return memory;
-  }
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t size, std::align_val_t alignment) { return operator new(size, alignment); }
-void operator delete(void* memory, std::align_val_t) noexcept { std::free(memory); }
-void operator delete[](void* memory, std::align_val_t) noexcept { std::free(memory); }
-void operator delete(void* memory, std::size_t, std::align_val_t) noexcept { std::free(memory); }
-void operator delete[](void* memory, std::size_t, std::align_val_t) noexcept { std::free(memory); }
 
 namespace thintool::scenes {
 namespace {
@@ -313,7 +267,7 @@ Replay& replayFor(Algorithm algorithm, int faces, int marginMillimetres) {
   static std::map<std::tuple<Algorithm, int, int>, std::unique_ptr<Replay>> replays;
   std::unique_ptr<Replay>& replay = replays[{algorithm, faces, marginMillimetres}];
   if (replay == nullptr) {
-    btAlignedAllocSetCustom(&countedMalloc, &countedFree);
+    test::installCountingBulletAllocator();
     replay = std::make_unique<Replay>(algorithm, faces, marginMillimetres / 1000.0);
   }
   return *replay;
@@ -338,9 +292,9 @@ void run(benchmark::State& state, Algorithm algorithm) {
   long allocated = 0;
   for (auto _ : state) {
     replay.restore();
-    const long before = allocations.load(std::memory_order_relaxed);
+    const long before = test::allocationCount();
     state.SetIterationTime(replay.runPairs());
-    allocated += allocations.load(std::memory_order_relaxed) - before;
+    allocated += test::allocationCount() - before;
     if (tool != nullptr) {
       const thintool::ToolDiagnostics& d = tool->report().diagnostics;
       contacts += d.detection.colliding;

@@ -9,6 +9,7 @@
 // deep, held, lifted and pressed again: only the first press may grow the buffers. Its own
 // executable, because replacing operator new replaces it for the whole program.
 
+#include <CountingAllocator.h>
 #include <SoftBallScene.h>
 
 #include <BulletCollision/BroadphaseCollision/btOverlappingPairCache.h>
@@ -18,54 +19,9 @@
 
 #include <gtest/gtest.h>
 
-#include <atomic>
 #include <cstdio>
 #include <cstdlib>
-#include <new>
 #include <vector>
-
-namespace {
-
-std::atomic<long> allocations{0};
-
-void* countedMalloc(std::size_t size) {
-  allocations.fetch_add(1, std::memory_order_relaxed);
-  return std::malloc(size);
-}
-void countedFree(void* memory) { std::free(memory); }
-
-}  // namespace
-
-// GCC takes the replacement operators' free() of what their malloc() returned for a mismatch.
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-#endif
-
-void* operator new(std::size_t size) {
-  allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* memory = std::malloc(size == 0 ? 1 : size)) {
-    return memory;
-  }
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t size) { return operator new(size); }
-void operator delete(void* memory) noexcept { std::free(memory); }
-void operator delete[](void* memory) noexcept { std::free(memory); }
-void operator delete(void* memory, std::size_t) noexcept { std::free(memory); }
-void operator delete[](void* memory, std::size_t) noexcept { std::free(memory); }
-void* operator new(std::size_t size, std::align_val_t alignment) {
-  allocations.fetch_add(1, std::memory_order_relaxed);
-  const std::size_t a = static_cast<std::size_t>(alignment);
-  if (void* memory = std::aligned_alloc(a, (size + a - 1) / a * a)) {
-    return memory;
-  }
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t size, std::align_val_t alignment) { return operator new(size, alignment); }
-void operator delete(void* memory, std::align_val_t) noexcept { std::free(memory); }
-void operator delete[](void* memory, std::align_val_t) noexcept { std::free(memory); }
-void operator delete(void* memory, std::size_t, std::align_val_t) noexcept { std::free(memory); }
-void operator delete[](void* memory, std::size_t, std::align_val_t) noexcept { std::free(memory); }
 
 namespace thintool::scenes {
 namespace {
@@ -80,10 +36,10 @@ void countingNearCallback(btBroadphasePair& pair, btCollisionDispatcher& dispatc
   const void* ball = &counted->ball();
   const void* ground = &counted->ground();
   const bool toolPair = (a == ball || b == ball) && a != ground && b != ground;
-  const long before = allocations.load(std::memory_order_relaxed);
+  const long before = test::allocationCount();
   btCollisionDispatcher::defaultNearCallback(pair, dispatcher, info);
   if (toolPair) {
-    inToolPairs += allocations.load(std::memory_order_relaxed) - before;
+    inToolPairs += test::allocationCount() - before;
   }
 }
 
@@ -98,7 +54,7 @@ struct Phase {
 };
 
 std::vector<Phase> pressHoldLiftPress(const SceneSettings& settings) {
-  btAlignedAllocSetCustom(&countedMalloc, &countedFree);
+  test::installCountingBulletAllocator();
   SoftBallScene scene(settings);
   scene.settle();
   counted = &scene;
