@@ -4,6 +4,7 @@
 
 #include <SoftBallScene.h>
 
+#include <thintool/bullet/Convert.h>
 #include <thintool/core/Error.h>
 #include <thintool/thintool.h>
 
@@ -34,24 +35,6 @@ scenes::Algorithm baselineAlgorithmOf(AlgorithmKind kind) {
     case AlgorithmKind::Swept: break;
   }
   return scenes::Algorithm::ThinTool;
-}
-
-btVector3 toBullet(const Vec3& v) { return btVector3(btScalar(v.x), btScalar(v.y), btScalar(v.z)); }
-
-btTransform toBullet(const Pose& pose) {
-  btMatrix3x3 basis;
-  for (int r = 0; r < 3; ++r) basis[r] = toBullet(pose.rotation.row[r]);
-  return btTransform(basis, toBullet(pose.translation));
-}
-
-Pose fromBullet(const btTransform& t) {
-  Pose pose;
-  for (int r = 0; r < 3; ++r) {
-    const btVector3& row = t.getBasis()[r];
-    pose.rotation.row[r] = {row.x(), row.y(), row.z()};
-  }
-  pose.translation = {t.getOrigin().x(), t.getOrigin().y(), t.getOrigin().z()};
-  return pose;
 }
 
 bool isIdentity(const Pose& pose) {
@@ -96,9 +79,9 @@ btSoftBody* makeSoftBody(const SceneSpec& scene, btSoftBodyWorldInfo& info) {
   switch (soft.mesh) {
     case SoftBodySpec::Mesh::Ellipsoid:
       if (soft.exactHull) {
-        return scenes::createExactHullEllipsoid(info, toBullet(soft.centre), toBullet(soft.radius), soft.resolution);
+        return scenes::createExactHullEllipsoid(info, toBt(soft.centre), toBt(soft.radius), soft.resolution);
       }
-      return btSoftBodyHelpers::CreateEllipsoid(info, toBullet(soft.centre), toBullet(soft.radius), soft.resolution);
+      return btSoftBodyHelpers::CreateEllipsoid(info, toBt(soft.centre), toBt(soft.radius), soft.resolution);
     case SoftBodySpec::Mesh::Obj: {
       std::vector<btScalar> coordinates;
       for (const Vec3& v : soft.objMesh.vertices) {
@@ -115,17 +98,17 @@ btSoftBody* makeSoftBody(const SceneSpec& scene, btSoftBodyWorldInfo& info) {
   }
   const double h = soft.sheetSize / 2;
   const Vec3& c = soft.centre;
-  return btSoftBodyHelpers::CreatePatch(info, toBullet(c + Vec3{-h, 0, -h}), toBullet(c + Vec3{h, 0, -h}),
-                                        toBullet(c + Vec3{-h, 0, h}), toBullet(c + Vec3{h, 0, h}),
+  return btSoftBodyHelpers::CreatePatch(info, toBt(c + Vec3{-h, 0, -h}), toBt(c + Vec3{h, 0, -h}),
+                                        toBt(c + Vec3{-h, 0, h}), toBt(c + Vec3{h, 0, h}),
                                         soft.nodesPerSide, soft.nodesPerSide, 1 + 2 + 4 + 8, true);
 }
 
 btCollisionShape* makePieceShape(const ToolPieceSpec& piece, World& w) {
   if (piece.kind == ToolPieceSpec::Kind::Box) {
-    w.shapes.push_back(std::make_unique<btBoxShape>(toBullet(piece.halfExtents)));
+    w.shapes.push_back(std::make_unique<btBoxShape>(toBt(piece.halfExtents)));
   } else {
     auto hull = std::make_unique<btConvexHullShape>();
-    for (const Vec3& v : piece.hull.vertices) hull->addPoint(toBullet(v), false);
+    for (const Vec3& v : piece.hull.vertices) hull->addPoint(toBt(v), false);
     hull->recalcLocalAabb();
     w.shapes.push_back(std::move(hull));
   }
@@ -136,7 +119,7 @@ btCollisionShape* makePieceShape(const ToolPieceSpec& piece, World& w) {
 btCollisionShape* makeToolShape(const ToolSpec& tool, World& w) {
   if (tool.pieces.size() == 1 && isIdentity(tool.pieces[0].offset)) return makePieceShape(tool.pieces[0], w);
   auto compound = std::make_unique<btCompoundShape>();
-  for (const ToolPieceSpec& piece : tool.pieces) compound->addChildShape(toBullet(piece.offset), makePieceShape(piece, w));
+  for (const ToolPieceSpec& piece : tool.pieces) compound->addChildShape(toTransform(piece.offset), makePieceShape(piece, w));
   w.shapes.push_back(std::move(compound));
   return w.shapes.back().get();
 }
@@ -160,14 +143,6 @@ std::vector<Vec3> nodesOf(const btSoftBody& soft) {
   return nodes;
 }
 
-std::vector<Triangle> facesOf(const btSoftBody& soft) {
-  std::vector<Triangle> faces(soft.m_faces.size());
-  for (int i = 0; i < soft.m_faces.size(); ++i) {
-    for (int k = 0; k < 3; ++k) faces[i][k] = int(soft.m_faces[i].m_n[k] - &soft.m_nodes[0]);
-  }
-  return faces;
-}
-
 }  // namespace
 
 RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
@@ -184,7 +159,7 @@ RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
   w.world = std::make_unique<btSoftRigidDynamicsWorld>(w.dispatcher.get(), &w.broadphase, &w.solver,
                                                        w.configuration.get(), &w.softSolver);
   btSoftRigidDynamicsWorld& world = *w.world;
-  world.setGravity(toBullet(scene.gravity));
+  world.setGravity(toBt(scene.gravity));
   btSoftBodyWorldInfo& info = world.getWorldInfo();
   info.m_gravity = world.getGravity();
   info.m_sparsesdf.setDefaultVoxelsz(btScalar(variant.voxel));
@@ -213,7 +188,7 @@ RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
     const ToolSpec& tool = scene.tools[t];
     Pose parked = poseAt(tool.trajectory, 0);
     parked.translation.y += kParkedAbove;
-    w.motions.push_back(std::make_unique<btDefaultMotionState>(toBullet(parked)));
+    w.motions.push_back(std::make_unique<btDefaultMotionState>(toTransform(parked)));
     auto body = std::make_unique<btRigidBody>(
         btRigidBody::btRigidBodyConstructionInfo(0, w.motions.back().get(), makeToolShape(tool, w)));
     body->setCollisionFlags(body->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
@@ -263,7 +238,7 @@ RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
   std::vector<Pose> toolPoses;
   for (std::size_t t = 0; t < scene.tools.size(); ++t) {
     const Pose start = poseAt(trajectories[t], 0);
-    w.motions[t]->setWorldTransform(toBullet(start));
+    w.motions[t]->setWorldTransform(toTransform(start));
     if (w.thinTools[t] != nullptr) w.thinTools[t]->resetMotion();
     toolPoses.push_back(start);
   }
@@ -277,7 +252,7 @@ RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
   result.softFaces = soft.m_faces.size();
   for (Tool* tool : w.thinTools) result.toolNodes += tool != nullptr ? int(tool->nodeCount()) : 0;
 
-  const std::vector<Triangle> faces = facesOf(soft);
+  const std::vector<Triangle> faces = scenes::faceIndices(soft);
   GroundTruth truth(std::move(pieces), scene.soft.mesh != SoftBodySpec::Mesh::Sheet);
   truth.start(toolPoses, nodesOf(soft), faces);
 
@@ -288,7 +263,7 @@ RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
     const double time = i * scene.timeStep;
     for (std::size_t t = 0; t < scene.tools.size(); ++t) {
       toolPoses[t] = poseAt(trajectories[t], time);
-      w.motions[t]->setWorldTransform(toBullet(toolPoses[t]));
+      w.motions[t]->setWorldTransform(toTransform(toolPoses[t]));
     }
     StepSample sample;
     sample.time = time;
@@ -302,7 +277,7 @@ RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
     const std::vector<Vec3> nodes = nodesOf(soft);
     for (const Vec3& node : nodes) result.finite = result.finite && isFinite(node);
     if (!result.finite) break;
-    for (std::size_t t = 0; t < scene.tools.size(); ++t) toolPoses[t] = fromBullet(w.tools[t]->getWorldTransform());
+    for (std::size_t t = 0; t < scene.tools.size(); ++t) toolPoses[t] = toPose(w.tools[t]->getWorldTransform());
     const GroundTruthStep& step = truth.update(toolPoses, nodes, faces);
     sample.crossings = step.crossings;
     sample.toolInside = step.toolInside;

@@ -38,14 +38,6 @@ float shadeOf(const btVector3& normal) {
 
 void vertex(const btVector3& p) { glVertex3f(float(p.x()), float(p.y()), float(p.z())); }
 
-btTransform toTransform(const Pose& pose) {
-  const Mat3& r = pose.rotation;
-  const btMatrix3x3 basis(btScalar(r.row[0].x), btScalar(r.row[0].y), btScalar(r.row[0].z), btScalar(r.row[1].x),
-                          btScalar(r.row[1].y), btScalar(r.row[1].z), btScalar(r.row[2].x), btScalar(r.row[2].y),
-                          btScalar(r.row[2].z));
-  return btTransform(basis, toBt(pose.translation));
-}
-
 // The column-major matrices OpenGL wants.
 void perspective(float fovY, float aspect, float zNear, float zFar, float* m) {
   const float f = 1 / std::tan(fovY / 2);

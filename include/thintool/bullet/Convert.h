@@ -26,4 +26,12 @@ inline Pose toPose(const btTransform& t) {
   return pose;
 }
 
+inline btTransform toTransform(const Pose& pose) {
+  btMatrix3x3 basis;
+  for (int i = 0; i < 3; ++i) {
+    basis[i] = toBt(pose.rotation.row[i]);
+  }
+  return btTransform(basis, toBt(pose.translation));
+}
+
 }  // namespace thintool
