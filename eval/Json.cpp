@@ -501,7 +501,7 @@ JsonValue parseJson(std::string_view text, const std::string& sourceName) {
   return Parser(text, sourceName).document();
 }
 
-JsonValue loadJsonFile(const std::string& path) {
+std::string readTextFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::string text;
   char buffer[4096];
@@ -511,8 +511,10 @@ JsonValue loadJsonFile(const std::string& path) {
   if (!in.eof()) {  // not opened, or a read failed (a directory, an I/O error)
     throw Error(path + ": cannot read the file");
   }
-  return parseJson(text, path);
+  return text;
 }
+
+JsonValue loadJsonFile(const std::string& path) { return parseJson(readTextFile(path), path); }
 
 JsonField::JsonField(const JsonValue& value, std::string path, std::string source)
     : value_(&value), path_(std::move(path)), source_(std::move(source)) {}

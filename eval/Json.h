@@ -42,6 +42,10 @@ const char* kindName(JsonValue::Kind kind);
 /// UTF-8. A leading UTF-8 byte order mark is skipped.
 JsonValue parseJson(std::string_view text, const std::string& sourceName);
 
+/// The whole file at path, bytes as they are. Throws thintool::Error "path: cannot read the file"
+/// when it cannot be opened or read (a missing file, a directory).
+std::string readTextFile(const std::string& path);
+
 /// Reads and parses the file at path; errors name the path as the source. An unreadable file
 /// throws thintool::Error "path: cannot read the file".
 JsonValue loadJsonFile(const std::string& path);

@@ -2,12 +2,12 @@
 // Copyright (c) 2026 The ThinTool developers
 #include "ObjMesh.h"
 
+#include "Json.h"
+
 #include <thintool/core/Error.h>
 
 #include <tiny_obj_loader.h>
 
-#include <fstream>
-#include <sstream>
 
 namespace thintool::eval {
 
@@ -74,14 +74,6 @@ TriangleMesh parseObj(const std::string& text, const std::string& sourceName) {
   return meshFrom(reader, sourceName);
 }
 
-TriangleMesh loadObj(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) {
-    throw Error(path + ": cannot read the file");
-  }
-  std::ostringstream text;
-  text << file.rdbuf();
-  return parseObj(text.str(), path);
-}
+TriangleMesh loadObj(const std::string& path) { return parseObj(readTextFile(path), path); }
 
 }  // namespace thintool::eval

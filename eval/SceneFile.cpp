@@ -363,11 +363,7 @@ SceneSpec parseScene(const std::string& text, const std::string& sourceName, con
 }
 
 SceneSpec loadScene(const std::string& path, const std::vector<Override>& overrides) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw Error(path + ": cannot read the file");
-  std::ostringstream text;
-  text << file.rdbuf();
-  return parseScene(text.str(), path, folderOf(path), overrides);
+  return parseScene(readTextFile(path), path, folderOf(path), overrides);
 }
 
 ConvexSolid solidOf(const ToolPieceSpec& piece) {
