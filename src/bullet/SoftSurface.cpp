@@ -115,6 +115,7 @@ void gatherPatch(btSoftBody& softBody, const Aabb& worldBox, PairState& state) {
          // A face with a non-finite node is gathered all the same: detection skips and counts it.
          Aabb motionBox;
          bool finite = true;
+         std::array<Index, 3> ids;
          for (int k = 0; k < 3; ++k) {
            const btSoftBody::Node* node = face->m_n[k];
            const Vec3 end = toVec3(node->m_x);
@@ -122,9 +123,9 @@ void gatherPatch(btSoftBody& softBody, const Aabb& worldBox, PairState& state) {
            finite = finite && isFinite(end) && isFinite(start);
            motionBox.include(end);
            motionBox.include(start);
-           const Index id = nodeIndex(softBody, node);
-           if (state.lastStep[id] == state.step) {
-             motionBox.include(state.lastPositions[id]);
+           ids[k] = nodeIndex(softBody, node);
+           if (state.lastStep[ids[k]] == state.step) {
+             motionBox.include(state.lastPositions[ids[k]]);
            }
          }
          if (finite && !motionBox.overlaps(worldBox)) {
@@ -133,7 +134,7 @@ void gatherPatch(btSoftBody& softBody, const Aabb& worldBox, PairState& state) {
          std::array<Index, 3> corners;
          for (int k = 0; k < 3; ++k) {
            const btSoftBody::Node* node = face->m_n[k];
-           const Index id = nodeIndex(softBody, node);
+           const Index id = ids[k];
            Index& vertex = state.patchVertexOfNode[id];
            if (vertex == kInvalidIndex) {
              vertex = patch.vertexCount();
