@@ -120,6 +120,12 @@ void writeCsv(const std::string& path, const std::vector<Sweep>& sweeps, const s
 std::string jsonString(const std::string& text) {
   std::string out = "\"";
   for (char c : text) {
+    if (static_cast<unsigned char>(c) < 0x20) {  // a scene's name or a path may hold any byte
+      char escaped[8];
+      std::snprintf(escaped, sizeof escaped, "\\u%04x", static_cast<unsigned>(c));
+      out += escaped;
+      continue;
+    }
     if (c == '"' || c == '\\') out += '\\';
     out += c;
   }
@@ -205,7 +211,6 @@ int run(int argc, char** argv) {
   std::string jsonPath;
   std::string stepsFolder;
   bool quiet = false;
-  bool reference = false;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     auto value = [&]() -> std::string {
@@ -219,7 +224,6 @@ int run(int argc, char** argv) {
       sweeps.push_back({o.path, splitValues(o.value)});
     } else if (arg == "--reference") {
       referenceSets.push_back(parseOverride(value()));
-      reference = true;
     } else if (arg == "--csv") {
       csvPath = value();
     } else if (arg == "--json") {
@@ -241,6 +245,8 @@ int run(int argc, char** argv) {
     std::cerr << kUsage;
     return 2;
   }
+
+  const bool reference = !referenceSets.empty();
 
   // Every combination of the swept values, for every file; each is read (and checked) up front,
   // so that a bad value fails before hours of runs, not after. A job's reference run shares its
