@@ -182,7 +182,6 @@ RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
   soft.getCollisionShape()->setMargin(btScalar(variant.margin));
   world.addSoftBody(w.soft);
 
-  GroundTruthRun noRun;
   std::vector<GroundTruthPiece> pieces;
   for (std::size_t t = 0; t < scene.tools.size(); ++t) {
     const ToolSpec& tool = scene.tools[t];
