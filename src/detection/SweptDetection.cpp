@@ -271,6 +271,8 @@ void detectSwept(const ToolModel& model, const Pose& previousPose, const Pose& p
     work.m_end[v] = pose.applyInverse(patch.positions[v]);
   }
   const Real size = length(model.bounds.extent());
+  // The projection onto a face admits barycentric coordinates down to -kOverlapTolerance.
+  const Real tolerance = kOverlapTolerance * size;
   Sweep sweep{model, pose, patch, skin, kOnSurface * size, memory, work.m_start, work.m_end, outContacts, outCounters};
 
   // Soft nodes against the solid.
@@ -298,26 +300,30 @@ void detectSwept(const ToolModel& model, const Pose& previousPose, const Pose& p
       ++outCounters.skippedFaces;
       continue;
     }
-    const Aabb swept = boxOf({work.m_start[corners[0]], work.m_start[corners[1]], work.m_start[corners[2]],
-                              work.m_end[corners[0]], work.m_end[corners[1]], work.m_end[corners[2]]})
-                           .expanded(skin);
+    const Aabb motionBox = boxOf({work.m_start[corners[0]], work.m_start[corners[1]], work.m_start[corners[2]],
+                                  work.m_end[corners[0]], work.m_end[corners[1]], work.m_end[corners[2]]});
+    const Aabb swept = motionBox.expanded(skin);
     if (!swept.overlaps(model.bounds)) {
       continue;
     }
-    // The face's motion is read when the first tool point near it turns up.
     Sweep::FaceMotion motion;
-    int motionKnown = 0;  // 0 not yet, 1 read, -1 collapsed
-    model.pointTree.queryOverlap(swept, [&](Index point) {
-      if (motionKnown == 0) {
-        motionKnown = sweep.faceMotion(f, motion) ? 1 : -1;
-      }
-      if (motionKnown > 0) {
+    if (!sweep.faceMotion(f, motion)) {
+      ++outCounters.skippedFaces;  // zero area at the start or the end: no side to keep
+    } else {
+      // A tool point touches the face when the moving face passes over it, which keeps it inside
+      // the box of the face's corners, or when it ends within the skin of the face and over it,
+      // which puts it at most skin·|n| from that box along each axis. Growing the box by the skin
+      // along the normals only, not in every direction, keeps the candidates to about those the
+      // face covers.
+      const Vec3 reach{skin * std::max(std::abs(motion.n0.x), std::abs(motion.n1.x)),
+                       skin * std::max(std::abs(motion.n0.y), std::abs(motion.n1.y)),
+                       skin * std::max(std::abs(motion.n0.z), std::abs(motion.n1.z))};
+      const Aabb covered{motionBox.min - reach - Vec3{tolerance, tolerance, tolerance},
+                         motionBox.max + reach + Vec3{tolerance, tolerance, tolerance}};
+      model.pointGrid.queryBox(covered, [&](Index point) {
         ++outCounters.nodesTested;
         sweep.toolPoint(point, motion);
-      }
-    });
-    if (motionKnown < 0) {
-      ++outCounters.skippedFaces;  // zero area at the start or the end: no side to keep
+      });
     }
     for (Index e = 0; e < model.featureEdges.size(); ++e) {
       const Vec3& p0 = model.mesh.vertices[model.featureEdges[e][0]];

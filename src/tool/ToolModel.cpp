@@ -407,12 +407,7 @@ ToolModel buildToolModel(const ConvexMesh& mesh, const ToolModelSettings& settin
 
   model.points = model.positions;
   model.points.insert(model.points.end(), mesh.vertices.begin(), mesh.vertices.end());
-  std::vector<Aabb> pointBoxes;
-  pointBoxes.reserve(model.points.size());
-  for (const Vec3& p : model.points) {
-    pointBoxes.push_back(Aabb::fromPoints(p, p));
-  }
-  model.pointTree.build(pointBoxes);
+  model.pointGrid.build(model.points);
 
   if (settings.association.enabled) {
     const Real maxLength = settings.association.maxRayLength > 0 ? settings.association.maxRayLength

@@ -28,6 +28,7 @@
 #include <thintool/core/Math.h>
 #include <thintool/geometry/AabbTree.h>
 #include <thintool/geometry/ConvexMesh.h>
+#include <thintool/geometry/PointGrid.h>
 
 #include <array>
 #include <vector>
@@ -88,10 +89,10 @@ struct ToolModel {
   /// Boxes around each node's inward ray, for finding the rays a soft face can meet.
   AabbTree rayTree;
 
-  /// The tool's points for swept detection: its sample nodes, then the hull's corners, and a tree
+  /// The tool's points for swept detection: its sample nodes, then the hull's corners, and a grid
   /// over them. Point i < nodeCount() is node i; the others are mesh vertex i - nodeCount().
   std::vector<Vec3> points;
-  AabbTree pointTree;
+  PointGrid pointGrid;
 
   /// Edges of the mesh between faces of different planes (the diagonals of a flat face are not
   /// edges of the solid), as mesh vertex pairs: what can slice between soft nodes.
