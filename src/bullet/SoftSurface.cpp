@@ -9,6 +9,8 @@
 #include <BulletSoftBody/btSoftBodyInternals.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <utility>
 
 namespace thintool::detail {
@@ -16,6 +18,25 @@ namespace thintool::detail {
 namespace {
 
 Aabb toAabb(const btDbvtVolume& volume) { return {toVec3(volume.Mins()), toVec3(volume.Maxs())}; }
+
+// The box in Bullet's scalar, rounded outwards, so that a walk by it misses nothing the box meets.
+btDbvtVolume toVolume(const Aabb& box) {
+  btVector3 low = toBt(box.min);
+  btVector3 high = toBt(box.max);
+  for (int axis = 0; axis < 3; ++axis) {
+    low[axis] = std::nextafter(low[axis], -std::numeric_limits<btScalar>::infinity());
+    high[axis] = std::nextafter(high[axis], std::numeric_limits<btScalar>::infinity());
+  }
+  return btDbvtVolume::FromMM(low, high);
+}
+
+inline void prefetch(const void* address) {
+#if defined(__GNUC__)
+  __builtin_prefetch(address);
+#else
+  (void)address;
+#endif
+}
 
 Index faceIndex(const btSoftBody& softBody, const btSoftBody::Face* face) {
   return static_cast<Index>(face - &softBody.m_faces[0]);
@@ -37,7 +58,7 @@ void walk(const btDbvtNode* root, std::vector<const btDbvtNode*>& stack, const T
   while (!stack.empty()) {
     const btDbvtNode* node = stack.back();
     stack.pop_back();
-    if (!test(toAabb(node->volume))) {
+    if (!test(node->volume)) {
       continue;
     }
     if (node->isleaf()) {
@@ -45,6 +66,10 @@ void walk(const btDbvtNode* root, std::vector<const btDbvtNode*>& stack, const T
         return;
       }
     } else {
+      // Bullet allocates its tree nodes one by one: ask for both children's memory now, so that
+      // the one tested second arrives while the first is being tested.
+      prefetch(node->childs[0]);
+      prefetch(node->childs[1]);
       stack.push_back(node->childs[0]);
       stack.push_back(node->childs[1]);
     }
@@ -100,55 +125,81 @@ int surfaceOrientation(const btSoftBody& softBody) {
   return 0;
 }
 
-void gatherPatch(btSoftBody& softBody, const Aabb& worldBox, PairState& state) {
+Real gatherPatch(btSoftBody& softBody, const Aabb& toolBox, Real displacementBound, bool widen, PairState& state) {
   SoftPatch& patch = state.patch;
-  patch.clear();
   if (state.patchVertexOfNode.size() != static_cast<std::size_t>(softBody.m_nodes.size())) {
     state.patchVertexOfNode.assign(softBody.m_nodes.size(), kInvalidIndex);
   }
-  walk(softBody.m_fdbvt.m_root, state.traversalStack, [&](const Aabb& box) { return box.overlaps(worldBox); },
-       [&](const btDbvtNode* leaf) {
-         const auto* face = static_cast<const btSoftBody::Face*>(leaf->data);
-         // Bullet grows its leaf volumes by the soft margin and the face's velocity, so with a
-         // realistic 50 mm margin they overlap the box from several faces away: the face's own
-         // motion (start, predicted end, and where ThinTool left its nodes last step) decides.
-         // A face with a non-finite node is gathered all the same: detection skips and counts it.
-         Aabb motionBox;
-         bool finite = true;
-         std::array<Index, 3> ids;
-         for (int k = 0; k < 3; ++k) {
-           const btSoftBody::Node* node = face->m_n[k];
-           const Vec3 end = toVec3(node->m_x);
-           const Vec3 start = toVec3(node->m_q);
-           finite = finite && isFinite(end) && isFinite(start);
-           motionBox.include(end);
-           motionBox.include(start);
-           ids[k] = nodeIndex(softBody, node);
-           if (state.lastStep[ids[k]] == state.step) {
-             motionBox.include(state.lastPositions[ids[k]]);
+  // Bullet's leaf volumes bound each face where it ends the step, grown by the soft margin; a face
+  // that starts near the tool and ends away from it lies up to its displacement farther out.
+  Real bound = std::max<Real>(displacementBound, 0);
+  Real largestDisplacement = 0;
+  for (int attempt = 0; attempt < 3; ++attempt) {
+    if (attempt > 0) {
+      releasePatch(state);
+    }
+    patch.clear();
+    largestDisplacement = 0;
+    const btDbvtVolume walkBox = toVolume(toolBox.expanded(bound));
+    walk(softBody.m_fdbvt.m_root, state.traversalStack,
+         [&](const btDbvtVolume& volume) { return Intersect(volume, walkBox); },
+         [&](const btDbvtNode* leaf) {
+           const auto* face = static_cast<const btSoftBody::Face*>(leaf->data);
+           // The face's own motion decides: where it starts, where it is predicted to end, and
+           // where ThinTool left its nodes last step. A face with a non-finite node is gathered
+           // all the same: detection skips and counts it.
+           Aabb motionBox;
+           bool finite = true;
+           std::array<Index, 3> ids;
+           for (int k = 0; k < 3; ++k) {
+             const btSoftBody::Node* node = face->m_n[k];
+             const Vec3 end = toVec3(node->m_x);
+             const Vec3 start = toVec3(node->m_q);
+             finite = finite && isFinite(end) && isFinite(start);
+             motionBox.include(end);
+             motionBox.include(start);
+             ids[k] = nodeIndex(softBody, node);
+             if (state.lastStep[ids[k]] == state.step) {
+               motionBox.include(state.lastPositions[ids[k]]);
+             }
            }
-         }
-         if (finite && !motionBox.overlaps(worldBox)) {
+           if (finite && !motionBox.overlaps(toolBox)) {
+             return true;
+           }
+           std::array<Index, 3> corners;
+           for (int k = 0; k < 3; ++k) {
+             const btSoftBody::Node* node = face->m_n[k];
+             const Index id = ids[k];
+             Index& vertex = state.patchVertexOfNode[id];
+             if (vertex == kInvalidIndex) {
+               vertex = patch.vertexCount();
+               const Vec3 end = toVec3(node->m_x);
+               const Vec3 start = toVec3(node->m_q);
+               patch.positions.push_back(end);
+               patch.previousPositions.push_back(start);
+               patch.inverseMasses.push_back(node->m_im);
+               patch.nodeIds.push_back(id);
+               Real moved = length(end - start);
+               if (state.lastStep[id] == state.step) {
+                 moved = std::max(moved, length(end - state.lastPositions[id]));
+               }
+               if (moved > largestDisplacement) {  // false for NaN
+                 largestDisplacement = moved;
+               }
+             }
+             corners[k] = vertex;
+           }
+           patch.faces.push_back(corners);
+           patch.faceIds.push_back(faceIndex(softBody, face));
            return true;
-         }
-         std::array<Index, 3> corners;
-         for (int k = 0; k < 3; ++k) {
-           const btSoftBody::Node* node = face->m_n[k];
-           const Index id = ids[k];
-           Index& vertex = state.patchVertexOfNode[id];
-           if (vertex == kInvalidIndex) {
-             vertex = patch.vertexCount();
-             patch.positions.push_back(toVec3(node->m_x));
-             patch.previousPositions.push_back(toVec3(node->m_q));
-             patch.inverseMasses.push_back(node->m_im);
-             patch.nodeIds.push_back(id);
-           }
-           corners[k] = vertex;
-         }
-         patch.faces.push_back(corners);
-         patch.faceIds.push_back(faceIndex(softBody, face));
-         return true;
-       });
+         });
+    // Gathered nodes that moved farther than the walk allowed for: their neighbours may have too.
+    if (!widen || largestDisplacement <= bound) {
+      break;
+    }
+    bound = 2 * largestDisplacement;
+  }
+  return largestDisplacement;
 }
 
 void releasePatch(PairState& state) {
@@ -160,7 +211,7 @@ void releasePatch(PairState& state) {
 bool SoftBodyRayQuery::anyHit(const Vec3& from, const Vec3& delta) const {
   const SegmentSlab slab(from, delta);
   bool found = false;
-  walk(m_softBody.m_fdbvt.m_root, m_stack, [&](const Aabb& box) { return slab.overlaps(box); },
+  walk(m_softBody.m_fdbvt.m_root, m_stack, [&](const btDbvtVolume& volume) { return slab.overlaps(toAabb(volume)); },
        [&](const btDbvtNode* leaf) {
          const auto* face = static_cast<const btSoftBody::Face*>(leaf->data);
          found = intersectSegmentTriangle(from, delta, toVec3(face->m_n[0]->m_x), toVec3(face->m_n[1]->m_x),

@@ -26,9 +26,14 @@ void ensureFaceTree(btSoftBody& softBody);
 /// the surface is open (some edge does not have exactly two faces) or encloses no volume.
 int surfaceOrientation(const btSoftBody& softBody);
 
-/// Fills state.patch with the faces whose motion in the step overlaps worldBox, and their nodes.
-/// state.lastStep and state.lastPositions must be sized to the soft body's nodes.
-void gatherPatch(btSoftBody& softBody, const Aabb& worldBox, PairState& state);
+/// Fills state.patch with the faces whose motion in the step overlaps toolBox (world): from the
+/// start of the step (m_q) to its predicted end (m_x), and where ThinTool left their nodes last
+/// step. Bullet's face tree bounds each face only where it ends, so the walk looks
+/// displacementBound (m) beyond toolBox for faces that end away from it; with widen, when a
+/// gathered node moved farther, the walk widens and runs again. Returns the largest displacement
+/// of a gathered node. state.lastStep and state.lastPositions must be sized to the soft body's
+/// nodes.
+Real gatherPatch(btSoftBody& softBody, const Aabb& toolBox, Real displacementBound, bool widen, PairState& state);
 
 /// Clears the soft node -> patch vertex map for the next gather.
 void releasePatch(PairState& state);

@@ -254,11 +254,11 @@ void ToolAlgorithm::processValidPiece(PairState& state, btSoftBody& softBody, co
   const Real skin = options.skin >= 0 ? options.skin : Real(softBody.getCollisionShape()->getMargin());
   Aabb reach = worldBounds(model.bounds, pose);
   if (swept) {
-    // The whole motion, and soft faces that move as far as the soft body moved last step.
     reach.include(worldBounds(model.bounds, previousPose));
-    reach = reach.expanded(2 * state.softReach);
   }
-  gatherPatch(softBody, reach.expanded(skin), state);
+  // Swept: the faces that meet the tool's whole motion during theirs, looked for first twice as far
+  // out as the soft nodes near the tool moved last step (the solver's pull adds to the motion).
+  gatherPatch(softBody, reach.expanded(skin), swept ? 2 * state.softReach : 0, swept, state);
 
   if (swept) {
     ++state.step;
