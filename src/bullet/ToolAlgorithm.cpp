@@ -315,7 +315,8 @@ void ToolAlgorithm::processValidPiece(PairState& state, btSoftBody& softBody, co
     }
   }
   if (options.response.kind == ResponseKind::Constraint && options.response.holdInSolver) {
-    computeHolds(model, pose, state.patch, skin, state.corrections, swept, m_tool.m_responseWorkspace, state.holds);
+    computeHolds(model, pose, previousPose, state.patch, skin, state.corrections, swept, m_tool.m_responseWorkspace,
+                 state.holds);
     if (options.response.contactsLast) {
       makeContactsLast(softBody);
     }

@@ -242,9 +242,9 @@ void computeResponse(const ToolModel& model, const Pose& toolPose, const Pose& p
   }
 }
 
-void computeHolds(const ToolModel& model, const Pose& toolPose, const SoftPatch& patch, Real skin,
-                  const std::vector<NodeCorrection>& corrections, bool holdAtToolFaces, ResponseWorkspace& work,
-                  std::vector<NodeHold>& outHolds) {
+void computeHolds(const ToolModel& model, const Pose& toolPose, const Pose& previousToolPose, const SoftPatch& patch,
+                  Real skin, const std::vector<NodeCorrection>& corrections, bool holdAtToolFaces,
+                  ResponseWorkspace& work, std::vector<NodeHold>& outHolds) {
   outHolds.clear();
   if (work.m_moved.size() < patch.vertexCount()) {
     work.m_moved.resize(patch.vertexCount(), 0);
@@ -271,21 +271,32 @@ void computeHolds(const ToolModel& model, const Pose& toolPose, const SoftPatch&
       continue;
     }
     const Vec3 local = toolPose.applyInverse(work.m_positions[vertex]);
+    const Vec3 startLocal = previousToolPose.applyInverse(patch.previousPositions[vertex]);
     Index front = kInvalidIndex;
     Real distance = -std::numeric_limits<Real>::max();
+    Index sameSide = kInvalidIndex;  // also in front of it at the start of the step
+    Real sameSideDistance = -std::numeric_limits<Real>::max();
     for (Index p = 0; p < model.planes.size(); ++p) {
       const Real d = model.planes[p].signedDistance(local) - skin;
       if (d > distance) {
         distance = d;
         front = p;
       }
+      if (d > sameSideDistance && model.planes[p].signedDistance(startLocal) - skin >= -kOnGrownSurface) {
+        sameSideDistance = d;
+        sameSide = p;
+      }
     }
     if (front == kInvalidIndex || distance < -kOnGrownSurface) {
       continue;  // inside the grown tool: its faces' contacts speak for it
     }
-    // The face it is farthest in front of separates it from the tool: held behind that plane it
-    // cannot enter the tool during the solve, and the plane is chosen anew every step, so a node
-    // beside a rim can still wrap around it over several steps.
+    // Any face it is in front of separates it from the tool: held behind that plane it cannot
+    // enter the tool during the solve, and the plane is chosen anew every step, so a node beside a
+    // rim can still wrap around it over several steps. One it was in front of at the start of the
+    // step, too, keeps it on the side it came from.
+    if (sameSide != kInvalidIndex && sameSideDistance >= -kOnGrownSurface) {
+      front = sameSide;
+    }
     const Plane& face = model.planes[front];
     const Vec3 normal = toolPose.applyToDirection(face.normal);
     outHolds.push_back({vertex, normal, -dot(normal, toolPose.apply(face.normal * (face.offset + skin))), false});

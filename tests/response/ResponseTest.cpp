@@ -207,6 +207,29 @@ TEST(Response, TheNodeGuardSendsASlippedNodeBackToTheSideItCameFrom) {
   EXPECT_TRUE(unguarded.corrections.empty());
 }
 
+TEST(Response, AHoldKeepsANodeOnTheSideItCameFrom) {
+  // A node the plate passed beside its +x rim: below the plate at the start of the step, now above
+  // it and still beside. It is farther in front of the top face than of the +x face, but held
+  // behind the top face's plane the solver could pull it over the plate; it is held beside.
+  Fixture f;
+  const Vec3 start{0.25, -0.05, 0};
+  f.vertex({0.25, 0.3, 0}, 2, &start);
+  std::vector<NodeHold> holds;
+  computeHolds(f.model, f.pose, f.pose, f.patch, kSkin, f.corrections, true, f.workspace, holds);
+  ASSERT_EQ(holds.size(), 1u);
+  EXPECT_NEAR(holds[0].normal.x, 1, 1e-12);
+  EXPECT_NEAR(holds[0].offset, -(0.2 + kSkin), 1e-12);
+
+  // One that started above the plate keeps the top face, which it is farthest in front of.
+  Fixture above;
+  const Vec3 startAbove{0.25, 0.1, 0};
+  above.vertex({0.25, 0.3, 0}, 2, &startAbove);
+  computeHolds(above.model, above.pose, above.pose, above.patch, kSkin, above.corrections, true, above.workspace,
+               holds);
+  ASSERT_EQ(holds.size(), 1u);
+  EXPECT_NEAR(holds[0].normal.y, 1, 1e-12);
+}
+
 TEST(Response, PaperForceIsKTimesDepthSpreadByBarycentricWeights) {
   Fixture f;
   f.contact(f.triangleInside(0), {0, -1, 0}, {0.25, 0.5, 0.25}, 0.003);  // the weight 0.5 is pinned

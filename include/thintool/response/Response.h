@@ -105,8 +105,8 @@ struct Wrench {
 
 class ResponseWorkspace {
  private:
-  friend void computeHolds(const ToolModel&, const Pose&, const SoftPatch&, Real, const std::vector<NodeCorrection>&,
-                           bool, ResponseWorkspace&, std::vector<NodeHold>&);
+  friend void computeHolds(const ToolModel&, const Pose&, const Pose&, const SoftPatch&, Real,
+                           const std::vector<NodeCorrection>&, bool, ResponseWorkspace&, std::vector<NodeHold>&);
   friend void computeResponse(const ToolModel&, const Pose&, const Pose&, const SoftPatch&,
                               const std::vector<Contact>&, Real, Real, const ResponseSettings&, ResponseWorkspace&,
                               std::vector<NodeCorrection>&, Wrench&);
@@ -129,14 +129,16 @@ void computeResponse(const ToolModel& model, const Pose& toolPose, const Pose& p
 /// The planes that keep the soft solver from undoing the response, or from dragging a node through
 /// the tool while it repairs a deformed body: each moved node keeps the plane it was moved onto
 /// (along its correction's normal, through where it now is). With holdAtToolFaces, every movable node
-/// of the patch outside the tool grown by the skin, moved or not, also keeps the plane of the tool
-/// face it is farthest in front of, which separates it from the tool (a moved node's own plane may
-/// be a soft face's, across the tool's face); chosen anew each step, it still lets a node wrap
-/// around a rim over several steps. Ask for it only where every node is known to be on its own
-/// side of the tool, as after swept detection: a node that slipped through unseen would be held
-/// on the wrong side.
-void computeHolds(const ToolModel& model, const Pose& toolPose, const SoftPatch& patch, Real skin,
-                  const std::vector<NodeCorrection>& corrections, bool holdAtToolFaces, ResponseWorkspace& workspace,
-                  std::vector<NodeHold>& outHolds);
+/// of the patch outside the tool grown by the skin, moved or not, also keeps the plane of a tool
+/// face it is in front of, which separates it from the tool (a moved node's own plane may be a soft
+/// face's, across the tool's face): of the faces it was also in front of at the start of the step
+/// (previousPositions, previousToolPose), the one it is farthest in front of, so that a node the
+/// tool passed beside a rim is held beside the rim, not behind the face on the tool's far side from
+/// where it came; chosen anew each step, it still lets a node wrap around a rim over several steps.
+/// Ask for it only where every node is known to be on its own side of the tool, as after swept
+/// detection: a node that slipped through unseen would be held on the wrong side.
+void computeHolds(const ToolModel& model, const Pose& toolPose, const Pose& previousToolPose, const SoftPatch& patch,
+                  Real skin, const std::vector<NodeCorrection>& corrections, bool holdAtToolFaces,
+                  ResponseWorkspace& workspace, std::vector<NodeHold>& outHolds);
 
 }  // namespace thintool
