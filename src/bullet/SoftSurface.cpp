@@ -139,7 +139,7 @@ Real gatherPatch(btSoftBody& softBody, const Aabb& toolBox, Real displacementBou
       releasePatch(state);
     }
     patch.clear();
-    largestDisplacement = 0;
+    Real largestSquared = 0;
     const btDbvtVolume walkBox = toVolume(toolBox.expanded(bound));
     walk(softBody.m_fdbvt.m_root, state.traversalStack,
          [&](const btDbvtVolume& volume) { return Intersect(volume, walkBox); },
@@ -179,12 +179,12 @@ Real gatherPatch(btSoftBody& softBody, const Aabb& toolBox, Real displacementBou
                patch.previousPositions.push_back(start);
                patch.inverseMasses.push_back(node->m_im);
                patch.nodeIds.push_back(id);
-               Real moved = length(end - start);
+               Real moved = lengthSquared(end - start);
                if (state.lastStep[id] == state.step) {
-                 moved = std::max(moved, length(end - state.lastPositions[id]));
+                 moved = std::max(moved, lengthSquared(end - state.lastPositions[id]));
                }
-               if (moved > largestDisplacement) {  // false for NaN
-                 largestDisplacement = moved;
+               if (moved > largestSquared) {  // false for NaN
+                 largestSquared = moved;
                }
              }
              corners[k] = vertex;
@@ -193,6 +193,7 @@ Real gatherPatch(btSoftBody& softBody, const Aabb& toolBox, Real displacementBou
            patch.faceIds.push_back(faceIndex(softBody, face));
            return true;
          });
+    largestDisplacement = std::sqrt(largestSquared);
     // Gathered nodes that moved farther than the walk allowed for: their neighbours may have too.
     if (!widen || largestDisplacement <= bound) {
       break;

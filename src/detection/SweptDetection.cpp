@@ -294,6 +294,10 @@ void detectSwept(const ToolModel& model, const Pose& previousPose, const Pose& p
   }
 
   // Tool points against soft faces, and tool edges against the faces' edges.
+  work.m_edgeBoxes.clear();
+  for (const auto& edge : model.featureEdges) {
+    work.m_edgeBoxes.push_back(Aabb::fromPoints(model.mesh.vertices[edge[0]], model.mesh.vertices[edge[1]]));
+  }
   for (Index f = 0; f < patch.faceCount(); ++f) {
     const auto& corners = patch.faces[f];
     if (!work.m_valid[corners[0]] || !work.m_valid[corners[1]] || !work.m_valid[corners[2]]) {
@@ -326,9 +330,7 @@ void detectSwept(const ToolModel& model, const Pose& previousPose, const Pose& p
       });
     }
     for (Index e = 0; e < model.featureEdges.size(); ++e) {
-      const Vec3& p0 = model.mesh.vertices[model.featureEdges[e][0]];
-      const Vec3& p1 = model.mesh.vertices[model.featureEdges[e][1]];
-      if (!swept.overlaps(Aabb::fromPoints(p0, p1))) {
+      if (!swept.overlaps(work.m_edgeBoxes[e])) {
         continue;
       }
       for (int k = 0; k < 3; ++k) {
