@@ -36,6 +36,11 @@ struct PairState {
   /// Largest soft node displacement seen in the pair's last step (m): how far beyond the tool's
   /// swept box to look for soft faces that may cross it.
   Real softReach = 0;
+  /// Bounds of the soft body's node tree when the pair was last processed: how far they move in a
+  /// step bounds the motion of a soft body arriving fast from afar, whose nodes near the tool had
+  /// not been seen moving.
+  Aabb softBounds;
+  bool hasSoftBounds = false;
   /// Where swept detection left each soft node at the end of its last step (world), and the
   /// step that was: the next sweep starts there rather than at Bullet's start of step, so that the
   /// soft solver's own moves in between (links, pressure) are swept too.
@@ -95,6 +100,7 @@ struct PairState {
     forceHistory.reset();
     step += 2;  // what was recorded before is no longer the previous step
     hasPreviousPose = false;
+    hasSoftBounds = false;
     live = false;
   }
 };

@@ -203,6 +203,33 @@ Real gatherPatch(btSoftBody& softBody, const Aabb& toolBox, Real displacementBou
   return largestDisplacement;
 }
 
+Real softBodyMotion(const btSoftBody& softBody, PairState& state) {
+  // Bullet refits the node tree in every predictMotion, around each node's end of step grown by the
+  // margin (and ahead along its velocity).
+  const btDbvtNode* root = softBody.m_ndbvt.m_root;
+  if (root == nullptr) {
+    return 0;
+  }
+  const Aabb bounds = toAabb(root->volume);
+  Real motionSquared = 0;
+  if (state.hasSoftBounds) {
+    Vec3 shift;
+    for (int axis = 0; axis < 3; ++axis) {
+      shift[axis] = std::max(std::abs(bounds.min[axis] - state.softBounds.min[axis]),
+                             std::abs(bounds.max[axis] - state.softBounds.max[axis]));
+    }
+    motionSquared = lengthSquared(shift);
+  } else {
+    for (int i = 0; i < softBody.m_nodes.size(); ++i) {
+      const btSoftBody::Node& node = softBody.m_nodes[i];
+      motionSquared = std::max(motionSquared, lengthSquared(toVec3(node.m_x) - toVec3(node.m_q)));
+    }
+  }
+  state.softBounds = bounds;
+  state.hasSoftBounds = true;
+  return std::isfinite(motionSquared) ? std::sqrt(motionSquared) : 0;
+}
+
 void releasePatch(PairState& state) {
   for (Index id : state.patch.nodeIds) {
     state.patchVertexOfNode[id] = kInvalidIndex;

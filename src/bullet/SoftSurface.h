@@ -35,6 +35,11 @@ int surfaceOrientation(const btSoftBody& softBody);
 /// nodes.
 Real gatherPatch(btSoftBody& softBody, const Aabb& toolBox, Real displacementBound, bool widen, PairState& state);
 
+/// How far the soft body as a whole moved this step (m): the largest move of a side of its node
+/// tree's bounds since the pair's last step, or, in the pair's first step, the largest move of any
+/// node (the only visit of every node, once per pair). Records the bounds in state.
+Real softBodyMotion(const btSoftBody& softBody, PairState& state);
+
 /// Clears the soft node -> patch vertex map for the next gather.
 void releasePatch(PairState& state);
 

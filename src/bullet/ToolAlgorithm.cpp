@@ -257,8 +257,10 @@ void ToolAlgorithm::processValidPiece(PairState& state, btSoftBody& softBody, co
     reach.include(worldBounds(model.bounds, previousPose));
   }
   // Swept: the faces that meet the tool's whole motion during theirs, looked for first twice as far
-  // out as the soft nodes near the tool moved last step (the solver's pull adds to the motion).
-  gatherPatch(softBody, reach.expanded(skin), swept ? 2 * state.softReach : 0, swept, state);
+  // out as the soft nodes near the tool moved last step (the solver's pull adds to the motion), or
+  // as the soft body moved as a whole this step, if farther.
+  const Real motionBound = swept ? std::max(2 * state.softReach, softBodyMotion(softBody, state)) : 0;
+  gatherPatch(softBody, reach.expanded(skin), motionBound, swept, state);
 
   if (swept) {
     ++state.step;
