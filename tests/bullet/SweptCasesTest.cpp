@@ -22,46 +22,58 @@
 namespace thintool::scenes {
 namespace {
 
-// A 1 × 1 m sheet pinned at its corners at y = 1, and a 0.3 m plate, 2 cm thick, pushed down
-// through it at 10 m/s: at 60 Hz it goes from 9 cm above the sheet to 8 cm below it in one step,
-// then on for 0.25 m and holds. Returns how many sheet nodes under the plate's footprint end
-// above its underside (the plate went through them).
-int sheetNodesLeftAbove(bool swept) {
-  SoftWorld soft(btVector3(0, 0, 0));
-  btSoftRigidDynamicsWorld& world = soft.world;
-  btSoftBody* sheet = btSoftBodyHelpers::CreatePatch(world.getWorldInfo(), btVector3(-0.5, 1, -0.5),
-                                                     btVector3(0.5, 1, -0.5), btVector3(-0.5, 1, 0.5),
-                                                     btVector3(0.5, 1, 0.5), 11, 11, 1 + 2 + 4 + 8, true);
-  sheet->getCollisionShape()->setMargin(0.01);
-  sheet->setTotalMass(0.1);
-  world.addSoftBody(sheet);
+// A square sheet at y = 1, its corners pinned or free, under a kinematic 0.3 m plate, 2 cm thick,
+// at y = 1.1, registered as a tool; all removed again on destruction.
+struct SheetUnderPlate {
+  SoftWorld soft{btVector3(0, 0, 0)};
+  btSoftBody* sheet = nullptr;
+  btBoxShape plateShape{btVector3(0.15, 0.01, 0.15)};
+  btDefaultMotionState motion{btTransform(btQuaternion::getIdentity(), btVector3(0, 1.1, 0))};
+  btRigidBody plate{btRigidBody::btRigidBodyConstructionInfo(0, &motion, &plateShape)};
 
-  btBoxShape plateShape(btVector3(0.15, 0.01, 0.15));
-  btDefaultMotionState motion(btTransform(btQuaternion::getIdentity(), btVector3(0, 1.1, 0)));
-  btRigidBody plate(btRigidBody::btRigidBodyConstructionInfo(0, &motion, &plateShape));
-  plate.setCollisionFlags(plate.getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
-  world.addRigidBody(&plate);
+  SheetUnderPlate(btScalar halfWidth, int nodesPerSide, bool pinned, btScalar mass, const ToolOptions& options) {
+    const btScalar h = halfWidth;
+    sheet = btSoftBodyHelpers::CreatePatch(soft.world.getWorldInfo(), btVector3(-h, 1, -h), btVector3(h, 1, -h),
+                                           btVector3(-h, 1, h), btVector3(h, 1, h), nodesPerSide, nodesPerSide,
+                                           pinned ? 1 + 2 + 4 + 8 : 0, true);
+    sheet->getCollisionShape()->setMargin(0.01);
+    sheet->setTotalMass(mass);
+    soft.world.addSoftBody(sheet);
+    plate.setCollisionFlags(plate.getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
+    soft.world.addRigidBody(&plate);
+    addTool(soft.world, plate, options);
+  }
+  ~SheetUnderPlate() {
+    removeTool(soft.world, plate);
+    soft.world.removeRigidBody(&plate);
+    soft.world.removeSoftBody(sheet);
+    delete sheet;
+  }
+  SheetUnderPlate(const SheetUnderPlate&) = delete;
+  SheetUnderPlate& operator=(const SheetUnderPlate&) = delete;
+};
+
+// A 1 × 1 m sheet pinned at its corners, and the plate pushed down through it at 10 m/s: at 60 Hz it
+// goes from 9 cm above the sheet to 8 cm below it in one step, then on for 0.25 m and holds.
+// Returns how many sheet nodes under the plate's footprint end above its underside (the plate went
+// through them).
+int sheetNodesLeftAbove(bool swept) {
   ToolOptions options;
   options.swept = swept;
-  addTool(world, plate, options);
-
+  SheetUnderPlate scene(0.5, 11, true, 0.1, options);
   const btScalar dt = btScalar(1) / 60;
   constexpr btScalar kStart = 1.1, kEnd = 0.75, kSpeed = 10;
   btScalar y = kStart;
   for (int step = 0; step < 20; ++step) {
     y = btMax(kEnd, kStart - kSpeed * dt * btScalar(step));
-    motion.setWorldTransform(btTransform(btQuaternion::getIdentity(), btVector3(0, y, 0)));
-    world.stepSimulation(dt, 1, dt);
+    scene.motion.setWorldTransform(btTransform(btQuaternion::getIdentity(), btVector3(0, y, 0)));
+    scene.soft.world.stepSimulation(dt, 1, dt);
   }
   int above = 0;
-  for (int i = 0; i < sheet->m_nodes.size(); ++i) {
-    const btVector3& x = sheet->m_nodes[i].m_x;
+  for (int i = 0; i < scene.sheet->m_nodes.size(); ++i) {
+    const btVector3& x = scene.sheet->m_nodes[i].m_x;
     above += std::abs(x.x()) < 0.15 && std::abs(x.z()) < 0.15 && x.y() > y - 0.01;
   }
-  removeTool(world, plate);
-  world.removeRigidBody(&plate);
-  world.removeSoftBody(sheet);
-  delete sheet;
   return above;
 }
 
@@ -70,53 +82,35 @@ TEST(SweptCases, AToolThatJumpsThroughAThinSheetInOneStepIsCaught) {
   EXPECT_GT(sheetNodesLeftAbove(false), 0) << "the discrete algorithm misses it: the test proves the difference";
 }
 
-// A free 0.2 × 0.2 m sheet thrown up at 15 m/s at a still 0.3 m plate 10 cm above it: at 60 Hz it
-// goes from 9 cm below the plate's underside to 14 cm above its top in one step, where nothing of
-// it was near the plate the step before. Smaller than the plate, it has no way round it. Returns the
-// crossings of the plate's mid-plane in its footprint, and the sheet's highest node at the end.
+// A free 0.2 × 0.2 m sheet thrown up at 15 m/s at the plate standing still 10 cm above it: at 60 Hz
+// it goes from 9 cm below the plate's underside to 14 cm above its top in one step, where nothing
+// of it was near the plate the step before. Smaller than the plate, it has no way round it. Returns
+// the crossings of the plate's mid-plane in its footprint, and the sheet's highest node at the end.
 RunMetrics thrownSheet(btScalar& outHighest) {
-  SoftWorld soft(btVector3(0, 0, 0));
-  btSoftRigidDynamicsWorld& world = soft.world;
-  btSoftBody* sheet = btSoftBodyHelpers::CreatePatch(world.getWorldInfo(), btVector3(-0.1, 1, -0.1),
-                                                     btVector3(0.1, 1, -0.1), btVector3(-0.1, 1, 0.1),
-                                                     btVector3(0.1, 1, 0.1), 5, 5, 0, true);
-  sheet->getCollisionShape()->setMargin(0.01);
-  sheet->setTotalMass(0.02);
-  world.addSoftBody(sheet);
-
-  btBoxShape plateShape(btVector3(0.15, 0.01, 0.15));
-  btDefaultMotionState motion(btTransform(btQuaternion::getIdentity(), btVector3(0, 1.1, 0)));
-  btRigidBody plate(btRigidBody::btRigidBodyConstructionInfo(0, &motion, &plateShape));
-  plate.setCollisionFlags(plate.getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
-  world.addRigidBody(&plate);
-  addTool(world, plate, ToolOptions{});
-
+  SheetUnderPlate scene(0.1, 5, false, 0.02, ToolOptions{});
+  btSoftBody& sheet = *scene.sheet;
   ToolBox box;
   box.origin = {0, 1.1, 0};
   box.halfExtents = {0.15, 0.01, 0.15};
   std::vector<std::array<int, 3>> faces;
-  for (int i = 0; i < sheet->m_faces.size(); ++i) {
-    faces.push_back({static_cast<int>(sheet->m_faces[i].m_n[0] - &sheet->m_nodes[0]),
-                     static_cast<int>(sheet->m_faces[i].m_n[1] - &sheet->m_nodes[0]),
-                     static_cast<int>(sheet->m_faces[i].m_n[2] - &sheet->m_nodes[0])});
+  for (int i = 0; i < sheet.m_faces.size(); ++i) {
+    faces.push_back({static_cast<int>(sheet.m_faces[i].m_n[0] - &sheet.m_nodes[0]),
+                     static_cast<int>(sheet.m_faces[i].m_n[1] - &sheet.m_nodes[0]),
+                     static_cast<int>(sheet.m_faces[i].m_n[2] - &sheet.m_nodes[0])});
   }
   const btScalar dt = btScalar(1) / 60;
-  world.stepSimulation(dt, 1, dt);  // at rest: nothing near the plate
+  scene.soft.world.stepSimulation(dt, 1, dt);  // at rest: nothing near the plate
   CrossingTracker tracker;
-  tracker.start(box, nodePositions(*sheet), 0);
-  sheet->setVelocity(btVector3(0, 15, 0));
+  tracker.start(box, nodePositions(sheet), 0);
+  sheet.setVelocity(btVector3(0, 15, 0));
   for (int step = 0; step < 10; ++step) {
-    world.stepSimulation(dt, 1, dt);
-    tracker.update(box, nodePositions(*sheet), faces);
+    scene.soft.world.stepSimulation(dt, 1, dt);
+    tracker.update(box, nodePositions(sheet), faces);
   }
   outHighest = -BT_LARGE_FLOAT;
-  for (int i = 0; i < sheet->m_nodes.size(); ++i) {
-    outHighest = btMax(outHighest, sheet->m_nodes[i].m_x.y());
+  for (int i = 0; i < sheet.m_nodes.size(); ++i) {
+    outHighest = btMax(outHighest, sheet.m_nodes[i].m_x.y());
   }
-  removeTool(world, plate);
-  world.removeRigidBody(&plate);
-  world.removeSoftBody(sheet);
-  delete sheet;
   return tracker.metrics();
 }
 
