@@ -125,7 +125,7 @@ int surfaceOrientation(const btSoftBody& softBody) {
   return 0;
 }
 
-Real gatherPatch(btSoftBody& softBody, const Aabb& toolBox, Real displacementBound, bool widen, PairState& state) {
+void gatherPatch(btSoftBody& softBody, const Aabb& toolBox, Real displacementBound, bool widen, PairState& state) {
   SoftPatch& patch = state.patch;
   if (state.patchVertexOfNode.size() != static_cast<std::size_t>(softBody.m_nodes.size())) {
     state.patchVertexOfNode.assign(softBody.m_nodes.size(), kInvalidIndex);
@@ -133,7 +133,6 @@ Real gatherPatch(btSoftBody& softBody, const Aabb& toolBox, Real displacementBou
   // Bullet's leaf volumes bound each face where it ends the step, grown by the soft margin; a face
   // that starts near the tool and ends away from it lies up to its displacement farther out.
   Real bound = std::max<Real>(displacementBound, 0);
-  Real largestDisplacement = 0;
   for (int attempt = 0; attempt < 3; ++attempt) {
     if (attempt > 0) {
       releasePatch(state);
@@ -151,13 +150,15 @@ Real gatherPatch(btSoftBody& softBody, const Aabb& toolBox, Real displacementBou
            Aabb motionBox;
            bool finite = true;
            std::array<Index, 3> ids;
+           std::array<Vec3, 3> ends;
+           std::array<Vec3, 3> starts;
            for (int k = 0; k < 3; ++k) {
              const btSoftBody::Node* node = face->m_n[k];
-             const Vec3 end = toVec3(node->m_x);
-             const Vec3 start = toVec3(node->m_q);
-             finite = finite && isFinite(end) && isFinite(start);
-             motionBox.include(end);
-             motionBox.include(start);
+             ends[k] = toVec3(node->m_x);
+             starts[k] = toVec3(node->m_q);
+             finite = finite && isFinite(ends[k]) && isFinite(starts[k]);
+             motionBox.include(ends[k]);
+             motionBox.include(starts[k]);
              ids[k] = nodeIndex(softBody, node);
              if (state.lastStep[ids[k]] == state.step) {
                motionBox.include(state.lastPositions[ids[k]]);
@@ -168,20 +169,17 @@ Real gatherPatch(btSoftBody& softBody, const Aabb& toolBox, Real displacementBou
            }
            std::array<Index, 3> corners;
            for (int k = 0; k < 3; ++k) {
-             const btSoftBody::Node* node = face->m_n[k];
              const Index id = ids[k];
              Index& vertex = state.patchVertexOfNode[id];
              if (vertex == kInvalidIndex) {
                vertex = patch.vertexCount();
-               const Vec3 end = toVec3(node->m_x);
-               const Vec3 start = toVec3(node->m_q);
-               patch.positions.push_back(end);
-               patch.previousPositions.push_back(start);
-               patch.inverseMasses.push_back(node->m_im);
+               patch.positions.push_back(ends[k]);
+               patch.previousPositions.push_back(starts[k]);
+               patch.inverseMasses.push_back(face->m_n[k]->m_im);
                patch.nodeIds.push_back(id);
-               Real moved = lengthSquared(end - start);
+               Real moved = lengthSquared(ends[k] - starts[k]);
                if (state.lastStep[id] == state.step) {
-                 moved = std::max(moved, lengthSquared(end - state.lastPositions[id]));
+                 moved = std::max(moved, lengthSquared(ends[k] - state.lastPositions[id]));
                }
                if (moved > largestSquared) {  // false for NaN
                  largestSquared = moved;
@@ -193,14 +191,13 @@ Real gatherPatch(btSoftBody& softBody, const Aabb& toolBox, Real displacementBou
            patch.faceIds.push_back(faceIndex(softBody, face));
            return true;
          });
-    largestDisplacement = std::sqrt(largestSquared);
     // Gathered nodes that moved farther than the walk allowed for: their neighbours may have too.
+    const Real largestDisplacement = std::sqrt(largestSquared);
     if (!widen || largestDisplacement <= bound) {
       break;
     }
     bound = 2 * largestDisplacement;
   }
-  return largestDisplacement;
 }
 
 Real softBodyMotion(const btSoftBody& softBody, PairState& state) {

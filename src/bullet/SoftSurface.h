@@ -30,10 +30,9 @@ int surfaceOrientation(const btSoftBody& softBody);
 /// start of the step (m_q) to its predicted end (m_x), and where ThinTool left their nodes last
 /// step. Bullet's face tree bounds each face only where it ends, so the walk looks
 /// displacementBound (m) beyond toolBox for faces that end away from it; with widen, when a
-/// gathered node moved farther, the walk widens and runs again. Returns the largest displacement
-/// of a gathered node. state.lastStep and state.lastPositions must be sized to the soft body's
-/// nodes.
-Real gatherPatch(btSoftBody& softBody, const Aabb& toolBox, Real displacementBound, bool widen, PairState& state);
+/// gathered node moved farther, the walk widens and runs again. state.lastStep and
+/// state.lastPositions must be sized to the soft body's nodes.
+void gatherPatch(btSoftBody& softBody, const Aabb& toolBox, Real displacementBound, bool widen, PairState& state);
 
 /// How far the soft body as a whole moved this step (m): the largest move of a side of its node
 /// tree's bounds since the pair's last step, or, in the pair's first step, the largest move of any

@@ -294,10 +294,6 @@ void detectSwept(const ToolModel& model, const Pose& previousPose, const Pose& p
   }
 
   // Tool points against soft faces, and tool edges against the faces' edges.
-  work.m_edgeBoxes.clear();
-  for (const auto& edge : model.featureEdges) {
-    work.m_edgeBoxes.push_back(Aabb::fromPoints(model.mesh.vertices[edge[0]], model.mesh.vertices[edge[1]]));
-  }
   for (Index f = 0; f < patch.faceCount(); ++f) {
     const auto& corners = patch.faces[f];
     if (!work.m_valid[corners[0]] || !work.m_valid[corners[1]] || !work.m_valid[corners[2]]) {
@@ -330,7 +326,7 @@ void detectSwept(const ToolModel& model, const Pose& previousPose, const Pose& p
       });
     }
     for (Index e = 0; e < model.featureEdges.size(); ++e) {
-      if (!swept.overlaps(work.m_edgeBoxes[e])) {
+      if (!swept.overlaps(model.featureEdgeBoxes[e])) {
         continue;
       }
       for (int k = 0; k < 3; ++k) {

@@ -382,6 +382,9 @@ ToolModel buildToolModel(const ConvexMesh& mesh, const ToolModelSettings& settin
   model.bounds = bounds(mesh);
   model.thickness = thicknessAcrossFaces(mesh, model.planes);
   model.featureEdges = featureEdgesOf(mesh, model.planes);
+  for (const auto& edge : model.featureEdges) {
+    model.featureEdgeBoxes.push_back(Aabb::fromPoints(mesh.vertices[edge[0]], mesh.vertices[edge[1]]));
+  }
 
   const Vec3 extent = model.bounds.extent();
   const Real largestExtent = std::max({extent.x, extent.y, extent.z});

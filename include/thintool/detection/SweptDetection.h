@@ -81,7 +81,6 @@ class SweptWorkspace {
   std::vector<Vec3> m_start;  ///< patch vertices at the start of the step, in the tool's previous frame
   std::vector<Vec3> m_end;    ///< at the end, in its current frame
   std::vector<std::uint8_t> m_valid;
-  std::vector<Aabb> m_edgeBoxes;  ///< the tool's feature edges' boxes
 };
 
 /// Finds the contacts of a tool piece moving from previousPose to pose against the soft patch

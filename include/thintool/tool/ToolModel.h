@@ -97,6 +97,7 @@ struct ToolModel {
   /// Edges of the mesh between faces of different planes (the diagonals of a flat face are not
   /// edges of the solid), as mesh vertex pairs: what can slice between soft nodes.
   std::vector<std::array<Index, 2>> featureEdges;
+  std::vector<Aabb> featureEdgeBoxes;  ///< one per feature edge
 
   Index mutualPairs = 0;    ///< nodes whose partner chose them back
   Index unpairedNodes = 0;  ///< nodes whose association ray found nothing within its length
