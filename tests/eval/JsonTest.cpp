@@ -20,17 +20,7 @@ namespace {
 
 using Kind = JsonValue::Kind;
 
-// The message parseJson throws for text, or "(no error)".
-std::string parseError(std::string_view text) {
-  try {
-    parseJson(text, "t.json");
-  } catch (const Error& error) {
-    return error.what();
-  }
-  return "(no error)";
-}
-
-// The message a read on a scene throws, or "(no error)".
+// The message a read throws, or "(no error)".
 template <typename Read>
 std::string readError(Read read) {
   try {
@@ -39,6 +29,11 @@ std::string readError(Read read) {
     return error.what();
   }
   return "(no error)";
+}
+
+// The message parseJson throws for text, or "(no error)".
+std::string parseError(std::string_view text) {
+  return readError([&] { parseJson(text, "t.json"); });
 }
 
 TEST(Json, EachKindWithItsLineAndColumn) {

@@ -72,24 +72,12 @@ TEST(Runner, EveryShippedSceneRunsWithItsOwnAlgorithm) {
   }
 }
 
-}  // namespace
-}  // namespace thintool::eval
-
-namespace thintool::eval {
-namespace {
-
 TEST(Runner, TheExactHullBallHasTwiceResolutionPlusTwoFaces) {
   const RunResult result =
       run("plate_press.json", {"soft.exact_hull=true", "soft.resolution=255", "step.settle=0", "step.duration=0.05"});
   EXPECT_EQ(result.softFaces, 512);
   EXPECT_EQ(result.softNodes, 258);
 }
-
-}  // namespace
-}  // namespace thintool::eval
-
-namespace thintool::eval {
-namespace {
 
 TEST(Runner, AStartClearanceStartsEveryAlgorithmAboveItsOwnSettledBody) {
   // Stock A's 0.25 m margin lifts the settled ball above a start height fixed for stock E's 0.05 m.
