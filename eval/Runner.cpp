@@ -206,20 +206,18 @@ RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
   };
   const int settleSteps = int(std::lround(scene.settleSeconds / scene.timeStep));
   for (int i = 0; i < settleSteps; ++i) stepWorld();
+  double softBottom = std::numeric_limits<double>::max();
+  double softTop = -softBottom;
+  for (int i = 0; i < soft.m_nodes.size(); ++i) {
+    softBottom = std::min(softBottom, double(soft.m_nodes[i].m_x.y()));
+    softTop = std::max(softTop, double(soft.m_nodes[i].m_x.y()));
+  }
   if (options.settled) {
-    double low = std::numeric_limits<double>::max();
-    double high = -low;
-    for (int i = 0; i < soft.m_nodes.size(); ++i) {
-      low = std::min(low, double(soft.m_nodes[i].m_x.y()));
-      high = std::max(high, double(soft.m_nodes[i].m_x.y()));
-    }
-    options.settled(low, high);
+    options.settled(softBottom, softTop);
   }
 
   // Trajectories that start relative to the settled body.
   std::vector<TrajectorySpec> trajectories;
-  double softTop = -std::numeric_limits<double>::max();
-  for (int i = 0; i < soft.m_nodes.size(); ++i) softTop = std::max(softTop, double(soft.m_nodes[i].m_x.y()));
   for (const ToolSpec& tool : scene.tools) {
     TrajectorySpec trajectory = tool.trajectory;
     if (trajectory.startClearance) {
