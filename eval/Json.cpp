@@ -46,23 +46,6 @@ bool isWordChar(char c) {
          c == '-';
 }
 
-// Keys and strings in messages, with quotes and control characters escaped so that the message
-// stays on one line.
-std::string quote(std::string_view text) {
-  std::string out = "\"";
-  for (const char c : text) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      out += "\\u" + hex(static_cast<unsigned char>(c), 4);
-    } else {
-      out += c;
-    }
-  }
-  return out + '"';
-}
-
 std::string formatNumber(double value) {
   char text[32];
   const std::to_chars_result result = std::to_chars(text, text + sizeof text, value);
@@ -325,11 +308,11 @@ class Parser {
       const auto [first, isNew] = seen.emplace(key, keyMark);
       if (!isNew) {
         failAt(keyMark, "expected a key not already in this object",
-               quote(key) + " again (first at " + lineColumn(first->second) + ")");
+               jsonQuoted(key) + " again (first at " + lineColumn(first->second) + ")");
       }
       skipSpace();
       if (!consume(':')) {
-        fail("expected ':' after the key " + quote(key));
+        fail("expected ':' after the key " + jsonQuoted(key));
       }
       JsonValue member = value("expected a value", depth);
       result.members.emplace_back(std::move(key), std::move(member));
@@ -497,6 +480,21 @@ const char* kindName(JsonValue::Kind kind) {
   return "an unknown kind";
 }
 
+std::string jsonQuoted(std::string_view text) {
+  std::string out = "\"";
+  for (const char c : text) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      out += "\\u" + hex(static_cast<unsigned char>(c), 4);
+    } else {
+      out += c;
+    }
+  }
+  return out + '"';
+}
+
 JsonValue parseJson(std::string_view text, const std::string& sourceName) {
   return Parser(text, sourceName).document();
 }
@@ -631,9 +629,9 @@ std::string JsonField::oneOf(std::initializer_list<std::string_view> choices) co
     if (text == choice) {
       return text;
     }
-    listed += (listed.empty() ? "" : ", ") + quote(choice);
+    listed += (listed.empty() ? "" : ", ") + jsonQuoted(choice);
   }
-  fail("expected one of " + listed + ", found " + quote(text));
+  fail("expected one of " + listed + ", found " + jsonQuoted(text));
 }
 
 std::array<double, 3> JsonField::vec3() const {

@@ -42,6 +42,10 @@ const char* kindName(JsonValue::Kind kind);
 /// UTF-8. A leading UTF-8 byte order mark is skipped.
 JsonValue parseJson(std::string_view text, const std::string& sourceName);
 
+/// text as a JSON string literal: in double quotes, with quotes, backslashes and control
+/// characters escaped, so that it also stays on one line in a message.
+std::string jsonQuoted(std::string_view text);
+
 /// The whole file at path, bytes as they are. Throws thintool::Error "path: cannot read the file"
 /// when it cannot be opened or read (a missing file, a directory).
 std::string readTextFile(const std::string& path);

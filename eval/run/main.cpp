@@ -5,6 +5,7 @@
 // ground truth beside the time per step, from the same run) as CSV, JSON and a markdown table.
 // Run it without arguments for its usage.
 
+#include "Json.h"
 #include "Runner.h"
 #include "SceneFile.h"
 
@@ -117,21 +118,6 @@ void writeCsv(const std::string& path, const std::vector<Sweep>& sweeps, const s
   }
 }
 
-std::string jsonString(const std::string& text) {
-  std::string out = "\"";
-  for (char c : text) {
-    if (static_cast<unsigned char>(c) < 0x20) {  // a scene's name or a path may hold any byte
-      char escaped[8];
-      std::snprintf(escaped, sizeof escaped, "\\u%04x", static_cast<unsigned>(c));
-      out += escaped;
-      continue;
-    }
-    if (c == '"' || c == '\\') out += '\\';
-    out += c;
-  }
-  return out + "\"";
-}
-
 std::string jsonNumber(double value) { return std::isfinite(value) ? number(value) : "null"; }
 
 void writeJson(const std::string& path, const std::vector<Sweep>& sweeps, const std::vector<Row>& rows) {
@@ -140,11 +126,11 @@ void writeJson(const std::string& path, const std::vector<Sweep>& sweeps, const 
   out << "[\n";
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const RunResult& r = rows[i].result;
-    out << "  {\"scene\": " << jsonString(r.scene) << ", \"file\": " << jsonString(rows[i].file);
+    out << "  {\"scene\": " << jsonQuoted(r.scene) << ", \"file\": " << jsonQuoted(rows[i].file);
     for (std::size_t s = 0; s < sweeps.size(); ++s) {
-      out << ", " << jsonString(sweeps[s].path) << ": " << jsonString(rows[i].sweptValues[s]);
+      out << ", " << jsonQuoted(sweeps[s].path) << ": " << jsonQuoted(rows[i].sweptValues[s]);
     }
-    out << ", \"algorithm\": " << jsonString(algorithmKey(r.algorithm)) << ", \"dt\": " << jsonNumber(r.timeStep)
+    out << ", \"algorithm\": " << jsonQuoted(algorithmKey(r.algorithm)) << ", \"dt\": " << jsonNumber(r.timeStep)
         << ", \"soft_faces\": " << r.softFaces << ", \"soft_nodes\": " << r.softNodes
         << ", \"tool_nodes\": " << r.toolNodes << ", \"steps\": " << r.truth.steps
         << ", \"crossed_nodes\": " << r.truth.crossedNodes << ", \"still_crossed\": " << r.truth.stillCrossed
