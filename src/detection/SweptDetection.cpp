@@ -128,23 +128,28 @@ struct Sweep {
     const Vec3 *a0 = nullptr, *b0 = nullptr, *c0 = nullptr, *a1 = nullptr, *b1 = nullptr, *c1 = nullptr;
     Vec3 n0, n1;          // unit normals at the start and the end
     bool turned = false;  // the face turned over during the step
+    TriangleProjector onEnd;  // projection onto the face where it ends
   };
 
   bool faceMotion(Index f, FaceMotion& motion) const {
     const auto& corners = patch.faces[f];
     motion = {f, &start[corners[0]], &start[corners[1]], &start[corners[2]], &end[corners[0]], &end[corners[1]],
-           &end[corners[2]], {}, {}, false};
+              &end[corners[2]], {}, {}, false, {}};
     const Vec3 normal0 = triangleNormal(*motion.a0, *motion.b0, *motion.c0);
     const Vec3 normal1 = triangleNormal(*motion.a1, *motion.b1, *motion.c1);
+    const Real area0 = lengthSquared(normal0);  // squared, as the thresholds below
+    const Real area1 = lengthSquared(normal1);
+    const Real floor0 = kCollapsed * longestEdgeSquared(*motion.a0, *motion.b0, *motion.c0);
+    const Real floor1 = kCollapsed * longestEdgeSquared(*motion.a1, *motion.b1, *motion.c1);
     // A collapsed face (its corners on a line, give or take rounding) has no side: its nodes' own
     // contacts handle it.
-    if (!(length(normal0) > kCollapsed * longestEdgeSquared(*motion.a0, *motion.b0, *motion.c0)) ||
-        !(length(normal1) > kCollapsed * longestEdgeSquared(*motion.a1, *motion.b1, *motion.c1))) {
+    if (!(area0 > floor0 * floor0) || !(area1 > floor1 * floor1)) {
       return false;
     }
-    motion.n0 = normal0 / length(normal0);
-    motion.n1 = normal1 / length(normal1);
+    motion.n0 = normal0 / std::sqrt(area0);
+    motion.n1 = normal1 / std::sqrt(area1);
     motion.turned = dot(motion.n0, motion.n1) < 0;
+    motion.onEnd = TriangleProjector(*motion.a1, *motion.b1, *motion.c1);
     return true;
   }
 
@@ -170,7 +175,7 @@ struct Sweep {
       return;  // clear of the face at the end, and never through it
     }
     Vec3 weights;
-    const bool overFace = projectOntoTriangle(p, *face.a1, *face.b1, *face.c1, weights) &&
+    const bool overFace = face.onEnd.project(p, weights) &&
                           weights.x >= -kOverlapTolerance && weights.y >= -kOverlapTolerance &&
                           weights.z >= -kOverlapTolerance;
     Real timeOfImpact = 1;

@@ -147,20 +147,28 @@ ClipResult clipSegmentConvex(const std::vector<Plane>& planes, Real grow, const 
 }
 
 bool projectOntoTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, Vec3& outBarycentric) {
-  const Vec3 v0 = b - a;
-  const Vec3 v1 = c - a;
-  const Vec3 v2 = p - a;
-  const Real d00 = dot(v0, v0);
-  const Real d01 = dot(v0, v1);
-  const Real d11 = dot(v1, v1);
-  const Real denominator = d00 * d11 - d01 * d01;
-  if (!(denominator > 1e-24 * d00 * d11)) {
+  return TriangleProjector(a, b, c).project(p, outBarycentric);
+}
+
+TriangleProjector::TriangleProjector(const Vec3& a, const Vec3& b, const Vec3& c)
+    : m_a(a), m_ab(b - a), m_ac(c - a) {
+  m_abab = dot(m_ab, m_ab);
+  m_abac = dot(m_ab, m_ac);
+  m_acac = dot(m_ac, m_ac);
+  m_denominator = m_abab * m_acac - m_abac * m_abac;
+  m_degenerate = !(m_denominator > 1e-24 * m_abab * m_acac);
+}
+
+bool TriangleProjector::project(const Vec3& p, Vec3& outBarycentric) const {
+  if (m_degenerate) {
     return false;
   }
-  const Real d20 = dot(v2, v0);
-  const Real d21 = dot(v2, v1);
-  const Real wb = (d11 * d20 - d01 * d21) / denominator;
-  const Real wc = (d00 * d21 - d01 * d20) / denominator;
+  const Vec3 ap = p - m_a;
+  const Real apab = dot(ap, m_ab);
+  const Real apac = dot(ap, m_ac);
+  // Divided, not multiplied by a reciprocal, so that the coordinates stay those of the one-off form.
+  const Real wb = (m_acac * apab - m_abac * apac) / m_denominator;
+  const Real wc = (m_abab * apac - m_abac * apab) / m_denominator;
   outBarycentric = {1 - wb - wc, wb, wc};
   return true;
 }

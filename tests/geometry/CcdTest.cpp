@@ -147,5 +147,23 @@ TEST(EdgeEdgeCcd, NeverMissesACrossingThatSamplingFinds) {
   EXPECT_GT(crossings, 50);
 }
 
+TEST(TriangleProjector, RecoversThePointsItWasBuiltFromAndRefusesALine) {
+  const Vec3 a{0.3, -0.2, 1.0}, b{1.4, 0.1, 0.9}, c{0.2, 0.8, 1.3};
+  const TriangleProjector projector(a, b, c);
+  const Vec3 normal = cross(b - a, c - a);
+  for (const Vec3& weights : {Vec3{1, 0, 0}, Vec3{0.2, 0.5, 0.3}, Vec3{-0.5, 1.25, 0.25}}) {
+    // Off the plane along the normal: the projection is the weighted point itself.
+    const Vec3 p = a * weights.x + b * weights.y + c * weights.z + normal * 0.7;
+    Vec3 found;
+    ASSERT_TRUE(projector.project(p, found));
+    EXPECT_NEAR(found.x, weights.x, 1e-12);
+    EXPECT_NEAR(found.y, weights.y, 1e-12);
+    EXPECT_NEAR(found.z, weights.z, 1e-12);
+  }
+  Vec3 unused;
+  EXPECT_FALSE(TriangleProjector(a, b, a + (b - a) * 3).project(a, unused));
+  EXPECT_FALSE(TriangleProjector().project(a, unused));
+}
+
 }  // namespace
 }  // namespace thintool

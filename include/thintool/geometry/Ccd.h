@@ -71,4 +71,18 @@ void closestPointsOfSegments(const Vec3& p0, const Vec3& p1, const Vec3& q0, con
 /// Barycentric coordinates of p's projection onto the plane of (a, b, c); false for a degenerate triangle.
 bool projectOntoTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, Vec3& outBarycentric);
 
+/// projectOntoTriangle for many points onto one triangle: what depends on the triangle alone is
+/// computed once. Gives the same coordinates.
+class TriangleProjector {
+ public:
+  TriangleProjector() = default;
+  TriangleProjector(const Vec3& a, const Vec3& b, const Vec3& c);
+  bool project(const Vec3& p, Vec3& outBarycentric) const;
+
+ private:
+  Vec3 m_a, m_ab, m_ac;
+  Real m_abab = 0, m_abac = 0, m_acac = 0, m_denominator = 0;
+  bool m_degenerate = true;
+};
+
 }  // namespace thintool
