@@ -50,6 +50,7 @@ struct PairState {
   SoftPatch patch;
   std::vector<Index> patchVertexOfNode;  ///< soft node -> patch vertex, kInvalidIndex when absent
   std::vector<const btDbvtNode*> traversalStack;
+  std::vector<Index> candidateFaces;  ///< faces whose tree leaves met the gather's walk
   /// Face count the topology facts below were computed for.
   int facesSeen = -1;
   /// The piece's pose when the pair was last processed: the start of this step.

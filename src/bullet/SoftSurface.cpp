@@ -50,10 +50,10 @@ Index nodeIndex(const btSoftBody& softBody, const btSoftBody::Node* node) {
 // when leaf returns false. The stack is the caller's, so that a warmed-up walk allocates nothing.
 template <class Test, class Leaf>
 void walk(const btDbvtNode* root, std::vector<const btDbvtNode*>& stack, const Test& test, const Leaf& leaf) {
+  stack.clear();
   if (root == nullptr) {
     return;
   }
-  stack.clear();
   stack.push_back(root);
   while (!stack.empty()) {
     const btDbvtNode* node = stack.back();
@@ -140,57 +140,73 @@ void gatherPatch(btSoftBody& softBody, const Aabb& toolBox, Real displacementBou
     patch.clear();
     Real largestSquared = 0;
     const btDbvtVolume walkBox = toVolume(toolBox.expanded(bound));
+    // First the faces whose leaves meet the walk, in the tree's order, then their nodes: reading
+    // the nodes a few faces ahead of their use hides the wait for memory that reading them in the
+    // walk would add to each leaf.
+    state.candidateFaces.clear();
     walk(softBody.m_fdbvt.m_root, state.traversalStack,
          [&](const btDbvtVolume& volume) { return Intersect(volume, walkBox); },
          [&](const btDbvtNode* leaf) {
-           const auto* face = static_cast<const btSoftBody::Face*>(leaf->data);
-           // The face's own motion decides: where it starts, where it is predicted to end, and
-           // where ThinTool left its nodes last step. A face with a non-finite node is gathered
-           // all the same: detection skips and counts it.
-           Aabb motionBox;
-           bool finite = true;
-           std::array<Index, 3> ids;
-           std::array<Vec3, 3> ends;
-           std::array<Vec3, 3> starts;
-           for (int k = 0; k < 3; ++k) {
-             const btSoftBody::Node* node = face->m_n[k];
-             ends[k] = toVec3(node->m_x);
-             starts[k] = toVec3(node->m_q);
-             finite = finite && isFinite(ends[k]) && isFinite(starts[k]);
-             motionBox.include(ends[k]);
-             motionBox.include(starts[k]);
-             ids[k] = nodeIndex(softBody, node);
-             if (state.lastStep[ids[k]] == state.step) {
-               motionBox.include(state.lastPositions[ids[k]]);
-             }
-           }
-           if (finite && !motionBox.overlaps(toolBox)) {
-             return true;
-           }
-           std::array<Index, 3> corners;
-           for (int k = 0; k < 3; ++k) {
-             const Index id = ids[k];
-             Index& vertex = state.patchVertexOfNode[id];
-             if (vertex == kInvalidIndex) {
-               vertex = patch.vertexCount();
-               patch.positions.push_back(ends[k]);
-               patch.previousPositions.push_back(starts[k]);
-               patch.inverseMasses.push_back(face->m_n[k]->m_im);
-               patch.nodeIds.push_back(id);
-               Real moved = lengthSquared(ends[k] - starts[k]);
-               if (state.lastStep[id] == state.step) {
-                 moved = std::max(moved, lengthSquared(ends[k] - state.lastPositions[id]));
-               }
-               if (moved > largestSquared) {  // false for NaN
-                 largestSquared = moved;
-               }
-             }
-             corners[k] = vertex;
-           }
-           patch.faces.push_back(corners);
-           patch.faceIds.push_back(faceIndex(softBody, face));
+           prefetch(leaf->data);
+           state.candidateFaces.push_back(faceIndex(softBody, static_cast<const btSoftBody::Face*>(leaf->data)));
            return true;
          });
+    // The faces' own motion decides: where they start, where they are predicted to end, and where
+    // ThinTool left their nodes last step. A face with a non-finite node is gathered all the same:
+    // detection skips and counts it.
+    constexpr std::size_t kLookAhead = 8;
+    const std::size_t candidateCount = state.candidateFaces.size();
+    for (std::size_t c = 0; c < candidateCount; ++c) {
+      if (c + kLookAhead < candidateCount) {
+        const btSoftBody::Face& ahead = softBody.m_faces[static_cast<int>(state.candidateFaces[c + kLookAhead])];
+        for (const btSoftBody::Node* node : ahead.m_n) {
+          prefetch(&node->m_x);
+        }
+      }
+      const btSoftBody::Face* face = &softBody.m_faces[static_cast<int>(state.candidateFaces[c])];
+      Aabb motionBox;
+      bool finite = true;
+      std::array<Index, 3> ids;
+      std::array<Vec3, 3> ends;
+      std::array<Vec3, 3> starts;
+      for (int k = 0; k < 3; ++k) {
+        const btSoftBody::Node* node = face->m_n[k];
+        ends[k] = toVec3(node->m_x);
+        starts[k] = toVec3(node->m_q);
+        finite = finite && isFinite(ends[k]) && isFinite(starts[k]);
+        motionBox.include(ends[k]);
+        motionBox.include(starts[k]);
+        ids[k] = nodeIndex(softBody, node);
+        if (state.lastStep[ids[k]] == state.step) {
+          motionBox.include(state.lastPositions[ids[k]]);
+        }
+      }
+      if (finite && !motionBox.overlaps(toolBox)) {
+        continue;
+      }
+      std::array<Index, 3> corners;
+      for (int k = 0; k < 3; ++k) {
+        const Index id = ids[k];
+        Index& vertex = state.patchVertexOfNode[id];
+        if (vertex == kInvalidIndex) {
+          vertex = patch.vertexCount();
+          patch.positions.push_back(ends[k]);
+          patch.previousPositions.push_back(starts[k]);
+          patch.inverseMasses.push_back(face->m_n[k]->m_im);
+          patch.nodeIds.push_back(id);
+          Real moved = lengthSquared(ends[k] - starts[k]);
+          if (state.lastStep[id] == state.step) {
+            moved = std::max(moved, lengthSquared(ends[k] - state.lastPositions[id]));
+          }
+          if (moved > largestSquared) {  // false for NaN
+            largestSquared = moved;
+          }
+        }
+        corners[k] = vertex;
+      }
+      patch.faces.push_back(corners);
+      patch.faceIds.push_back(faceIndex(softBody, face));
+    }
     // Gathered nodes that moved farther than the walk allowed for: their neighbours may have too.
     const Real largestDisplacement = std::sqrt(largestSquared);
     if (!widen || largestDisplacement <= bound) {

@@ -246,6 +246,7 @@ void ToolAlgorithm::processValidPiece(PairState& state, btSoftBody& softBody, co
     state.contacts.reserve(model.nodeCount());
     state.corrections.reserve(softBody.m_nodes.size());
     state.traversalStack.reserve(256);
+    state.candidateFaces.reserve(softBody.m_faces.size());
     state.sides.resize(static_cast<Index>(softBody.m_nodes.size()), static_cast<Index>(softBody.m_faces.size()));
     state.lastPositions.resize(softBody.m_nodes.size());
     state.lastStep.assign(softBody.m_nodes.size(), 0);
