@@ -161,7 +161,7 @@ TEST(TriangleProjector, RecoversThePointsItWasBuiltFromAndRefusesALine) {
     EXPECT_NEAR(found.z, weights.z, 1e-12);
   }
   Vec3 unused;
-  EXPECT_FALSE(TriangleProjector(a, b, a + (b - a) * 3).project(a, unused));
+  EXPECT_FALSE(TriangleProjector({0, 0, 0}, {1, 2, 3}, {2, 4, 6}).project(a, unused));  // a line
   EXPECT_FALSE(TriangleProjector().project(a, unused));
 }
 
