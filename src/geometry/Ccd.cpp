@@ -155,8 +155,9 @@ TriangleProjector::TriangleProjector(const Vec3& a, const Vec3& b, const Vec3& c
   m_abab = dot(m_ab, m_ab);
   m_abac = dot(m_ab, m_ac);
   m_acac = dot(m_ac, m_ac);
-  m_denominator = m_abab * m_acac - m_abac * m_abac;
-  m_degenerate = !(m_denominator > 1e-24 * m_abab * m_acac);
+  const Real denominator = m_abab * m_acac - m_abac * m_abac;
+  m_degenerate = !(denominator > 1e-24 * m_abab * m_acac);
+  m_inverseDenominator = m_degenerate ? 0 : 1 / denominator;
 }
 
 bool TriangleProjector::project(const Vec3& p, Vec3& outBarycentric) const {
@@ -166,9 +167,8 @@ bool TriangleProjector::project(const Vec3& p, Vec3& outBarycentric) const {
   const Vec3 ap = p - m_a;
   const Real apab = dot(ap, m_ab);
   const Real apac = dot(ap, m_ac);
-  // Divided, not multiplied by a reciprocal, so that the coordinates stay those of the one-off form.
-  const Real wb = (m_acac * apab - m_abac * apac) / m_denominator;
-  const Real wc = (m_abab * apac - m_abac * apab) / m_denominator;
+  const Real wb = (m_acac * apab - m_abac * apac) * m_inverseDenominator;
+  const Real wc = (m_abab * apac - m_abac * apab) * m_inverseDenominator;
   outBarycentric = {1 - wb - wc, wb, wc};
   return true;
 }

@@ -72,7 +72,7 @@ void closestPointsOfSegments(const Vec3& p0, const Vec3& p1, const Vec3& q0, con
 bool projectOntoTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, Vec3& outBarycentric);
 
 /// projectOntoTriangle for many points onto one triangle: what depends on the triangle alone is
-/// computed once. Gives the same coordinates.
+/// computed once, the division included.
 class TriangleProjector {
  public:
   TriangleProjector() = default;
@@ -81,7 +81,7 @@ class TriangleProjector {
 
  private:
   Vec3 m_a, m_ab, m_ac;
-  Real m_abab = 0, m_abac = 0, m_acac = 0, m_denominator = 0;
+  Real m_abab = 0, m_abac = 0, m_acac = 0, m_inverseDenominator = 0;
   bool m_degenerate = true;
 };
 
