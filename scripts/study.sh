@@ -1,11 +1,11 @@
 #!/bin/sh
 # The evaluation study: error against run time for stock Bullet and ThinTool, from the same runs.
 # Writes docs/study/*.csv (every run), docs/study.md (the tables) and docs/study-*.png (the plots,
-# through gnuplot). Takes about 30 minutes on one core of the reference machine; run it on a quiet
+# through gnuplot). Takes about a minute and a half on this project's 2-core machine; run it on a quiet
 # machine, since the times are wall-clock. Needs the packages of scripts/install-deps.sh.
 #
 #   ./scripts/study.sh            the whole study
-#   ./scripts/study.sh --quick    a few configurations, to check that it runs (about a minute)
+#   ./scripts/study.sh --quick    a few configurations, to check that it runs (seconds)
 set -eu
 cd "$(dirname "$0")/.."
 quick=${1:-}
