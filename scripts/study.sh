@@ -5,7 +5,8 @@
 # machine, since the times are wall-clock. Needs the packages of scripts/install-deps.sh.
 #
 #   ./scripts/study.sh            the whole study
-#   ./scripts/study.sh --quick    a few configurations, to check that it runs (seconds)
+#   ./scripts/study.sh --quick    a few configurations, to check that it runs (seconds); writes
+#                                 to build/study-quick, leaving docs/ as committed
 set -eu
 cd "$(dirname "$0")/.."
 quick=${1:-}
@@ -14,7 +15,7 @@ cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > /dev/null
 cmake --build build --parallel 2 --target thintool_run
 run="./build/eval/thintool_run --quiet"
 out=docs/study
-mkdir -p "$out"
+report=docs/study.md
 
 algorithms=stock-A,stock-B,stock-E,ray-only,paper,swept
 steps=1/30,1/60,1/240,1/1000
@@ -22,7 +23,10 @@ speeds=0.1,1,5,20,50
 resolutions=63,255,1023,2047,8191,32767   # with exact_hull: 128, 512, 2,048, 4,096, 16,384, 65,536 faces
 if [ "$quick" = "--quick" ]; then
   algorithms=stock-E,swept; steps=1/60; speeds=1,20; resolutions=63,255
+  out=build/study-quick
+  report=$out/study.md
 fi
+mkdir -p "$out"
 
 # The needle's shipped trajectory is a recorded one; the matrix drives it at constant speeds.
 needle_path='{"type":"constant_velocity","start":[0,2.083,0],"start_clearance":0.1,"direction":[0,-1,0],"distance":1.1}'
@@ -45,5 +49,5 @@ $run eval/scenes/plate_press.json --set thintool.force=true --set soft.exact_hul
   --sweep "algorithm=$algorithms" --sweep "soft.resolution=$resolutions" \
   --csv "$out/plate_press-mesh.csv" > /dev/null
 
-python3 scripts/study-report.py "$out" docs/study.md
-echo "wrote docs/study.md and docs/study-*.png"
+python3 scripts/study-report.py "$out" "$report"
+echo "wrote $report and its plots"
