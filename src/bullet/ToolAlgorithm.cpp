@@ -47,14 +47,26 @@ Aabb worldBounds(const Aabb& local, const Pose& pose) {
 // pushes it through; it never pulls it out further. The body has zero inverse mass, so the
 // solver's impulses on it go nowhere (the tool's reaction comes from the projection), and it
 // never reads the tool's own velocity, which after a jump of the tool is meaningless.
-btSoftBody::RContact holdContact(btSoftBody::Node& node, const NodeHold& hold, btRigidBody& holdBody,
-                                 btScalar timeStep) {
+// A contact with every field set, for resizing the soft body's list: Bullet leaves some of
+// RContact's vectors unset, and resize() copies its fill value into each new slot.
+const btSoftBody::RContact& blankContact() {
+  static const btSoftBody::RContact blank = [] {
+    btSoftBody::RContact contact;
+    contact.t1 = contact.t2 = btVector3(0, 0, 0);
+    return contact;
+  }();
+  return blank;
+}
+
+// Fills contact, a blank one already in the soft body's list: Bullet's contact carries three
+// btMultiBodyJacobianData, so building one aside and copying it in costs more than the rest.
+void fillHoldContact(btSoftBody::RContact& contact, btSoftBody::Node& node, const NodeHold& hold,
+                     btRigidBody& holdBody, btScalar timeStep) {
   const btVector3 normal = toBt(hold.normal);
   const btScalar inFront = normal.dot(node.m_x) + btScalar(hold.offset);
   const btVector3 onPlane = node.m_x - normal * btMax(inFront, btScalar(0));
   holdBody.setLinearVelocity((onPlane - node.m_q) / timeStep);
   holdBody.setAngularVelocity(btVector3(0, 0, 0));
-  btSoftBody::RContact contact;
   contact.m_cti.m_colObj = &holdBody;
   contact.m_cti.m_normal = normal;
   contact.m_cti.m_offset = btScalar(hold.offset);
@@ -67,7 +79,6 @@ btSoftBody::RContact holdContact(btSoftBody::Node& node, const NodeHold& hold, b
   // the response put it, which moves with the tool's surface.
   contact.m_c3 = hold.sticks ? 0 : 1;
   contact.m_c4 = 0;  // no positional term: the hold body already aims at the plane
-  return contact;
 }
 
 // Appends a contact pass after the last link pass of the soft body's position solver, once.
@@ -108,9 +119,13 @@ void applyResponse(PairState& state, btSoftBody& softBody, btRigidBody* dynamicB
   if (dynamicBody != nullptr && !state.corrections.empty()) {
     dynamicBody->activate();
   }
+  const auto usable = [](const NodeHold& hold) { return isFinite(hold.normal) && std::isfinite(hold.offset); };
+  const auto usableCount = std::count_if(state.holds.begin(), state.holds.end(), usable);
+  int slot = softBody.m_rcontacts.size();
+  softBody.m_rcontacts.resize(slot + static_cast<int>(usableCount), blankContact());
   Index holdsUsed = 0;
   for (const NodeHold& hold : state.holds) {
-    if (!isFinite(hold.normal) || !std::isfinite(hold.offset)) {
+    if (!usable(hold)) {
       continue;
     }
     if (holdsUsed == state.holdBodies.size()) {
@@ -118,7 +133,7 @@ void applyResponse(PairState& state, btSoftBody& softBody, btRigidBody* dynamicB
           std::make_unique<btRigidBody>(btRigidBody::btRigidBodyConstructionInfo(0, nullptr, nullptr)));
     }
     btSoftBody::Node& node = softBody.m_nodes[static_cast<int>(state.patch.nodeIds[hold.vertex])];
-    softBody.m_rcontacts.push_back(holdContact(node, hold, *state.holdBodies[holdsUsed++], timeStep));
+    fillHoldContact(softBody.m_rcontacts[slot++], node, hold, *state.holdBodies[holdsUsed++], timeStep);
   }
 }
 
