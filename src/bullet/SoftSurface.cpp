@@ -76,6 +76,58 @@ void walk(const btDbvtNode* root, std::vector<const btDbvtNode*>& stack, const T
   }
 }
 
+// Adds the face to state.patch when its own motion meets toolBox: where it starts, where it is
+// predicted to end, and where ThinTool left its nodes last step. A face with a non-finite node is
+// gathered all the same: detection skips and counts it. Raises largestSquared to the squared
+// largest move of a node it adds.
+void gatherFace(const btSoftBody& softBody, Index faceId, const Aabb& toolBox, PairState& state,
+                Real& largestSquared) {
+  const btSoftBody::Face& face = softBody.m_faces[static_cast<int>(faceId)];
+  Aabb motionBox;
+  bool finite = true;
+  std::array<Index, 3> ids;
+  std::array<Vec3, 3> ends;
+  std::array<Vec3, 3> starts;
+  for (int k = 0; k < 3; ++k) {
+    const btSoftBody::Node* node = face.m_n[k];
+    ends[k] = toVec3(node->m_x);
+    starts[k] = toVec3(node->m_q);
+    finite = finite && isFinite(ends[k]) && isFinite(starts[k]);
+    motionBox.include(ends[k]);
+    motionBox.include(starts[k]);
+    ids[k] = nodeIndex(softBody, node);
+    if (state.lastStep[ids[k]] == state.step) {
+      motionBox.include(state.lastPositions[ids[k]]);
+    }
+  }
+  if (finite && !motionBox.overlaps(toolBox)) {
+    return;
+  }
+  SoftPatch& patch = state.patch;
+  std::array<Index, 3> corners;
+  for (int k = 0; k < 3; ++k) {
+    const Index id = ids[k];
+    Index& vertex = state.patchVertexOfNode[id];
+    if (vertex == kInvalidIndex) {
+      vertex = patch.vertexCount();
+      patch.positions.push_back(ends[k]);
+      patch.previousPositions.push_back(starts[k]);
+      patch.inverseMasses.push_back(face.m_n[k]->m_im);
+      patch.nodeIds.push_back(id);
+      Real moved = lengthSquared(ends[k] - starts[k]);
+      if (state.lastStep[id] == state.step) {
+        moved = std::max(moved, lengthSquared(ends[k] - state.lastPositions[id]));
+      }
+      if (moved > largestSquared) {  // false for NaN
+        largestSquared = moved;
+      }
+    }
+    corners[k] = vertex;
+  }
+  patch.faces.push_back(corners);
+  patch.faceIds.push_back(faceId);
+}
+
 }  // namespace
 
 void ensureFaceTree(btSoftBody& softBody) {
@@ -151,9 +203,6 @@ void gatherPatch(btSoftBody& softBody, const Aabb& toolBox, Real displacementBou
            state.candidateFaces.push_back(faceIndex(softBody, static_cast<const btSoftBody::Face*>(leaf->data)));
            return true;
          });
-    // The faces' own motion decides: where they start, where they are predicted to end, and where
-    // ThinTool left their nodes last step. A face with a non-finite node is gathered all the same:
-    // detection skips and counts it.
     constexpr std::size_t kLookAhead = 8;
     const std::size_t candidateCount = state.candidateFaces.size();
     for (std::size_t c = 0; c < candidateCount; ++c) {
@@ -163,49 +212,7 @@ void gatherPatch(btSoftBody& softBody, const Aabb& toolBox, Real displacementBou
           prefetch(&node->m_x);
         }
       }
-      const btSoftBody::Face* face = &softBody.m_faces[static_cast<int>(state.candidateFaces[c])];
-      Aabb motionBox;
-      bool finite = true;
-      std::array<Index, 3> ids;
-      std::array<Vec3, 3> ends;
-      std::array<Vec3, 3> starts;
-      for (int k = 0; k < 3; ++k) {
-        const btSoftBody::Node* node = face->m_n[k];
-        ends[k] = toVec3(node->m_x);
-        starts[k] = toVec3(node->m_q);
-        finite = finite && isFinite(ends[k]) && isFinite(starts[k]);
-        motionBox.include(ends[k]);
-        motionBox.include(starts[k]);
-        ids[k] = nodeIndex(softBody, node);
-        if (state.lastStep[ids[k]] == state.step) {
-          motionBox.include(state.lastPositions[ids[k]]);
-        }
-      }
-      if (finite && !motionBox.overlaps(toolBox)) {
-        continue;
-      }
-      std::array<Index, 3> corners;
-      for (int k = 0; k < 3; ++k) {
-        const Index id = ids[k];
-        Index& vertex = state.patchVertexOfNode[id];
-        if (vertex == kInvalidIndex) {
-          vertex = patch.vertexCount();
-          patch.positions.push_back(ends[k]);
-          patch.previousPositions.push_back(starts[k]);
-          patch.inverseMasses.push_back(face->m_n[k]->m_im);
-          patch.nodeIds.push_back(id);
-          Real moved = lengthSquared(ends[k] - starts[k]);
-          if (state.lastStep[id] == state.step) {
-            moved = std::max(moved, lengthSquared(ends[k] - state.lastPositions[id]));
-          }
-          if (moved > largestSquared) {  // false for NaN
-            largestSquared = moved;
-          }
-        }
-        corners[k] = vertex;
-      }
-      patch.faces.push_back(corners);
-      patch.faceIds.push_back(faceIndex(softBody, face));
+      gatherFace(softBody, state.candidateFaces[c], toolBox, state, largestSquared);
     }
     // Gathered nodes that moved farther than the walk allowed for: their neighbours may have too.
     const Real largestDisplacement = std::sqrt(largestSquared);

@@ -39,14 +39,6 @@ Aabb worldBounds(const Aabb& local, const Pose& pose) {
   return box;
 }
 
-// A contact of Bullet's soft solver that keeps a node on the positive side of a plane. PSolve_RContacts
-// corrects x -= n·(dn + c4·dp) while dn <= 0, dn being the node's motion this step relative to
-// the contact body's, (x - q - v_body·dt)·n. A body that moves the node onto the plane makes dn
-// the node's distance in front of the plane: the contact stays idle while the node is in front,
-// and with c4 = 0 puts it back on the plane when an iteration of the links or the pressure
-// pushes it through; it never pulls it out further. The body has zero inverse mass, so the
-// solver's impulses on it go nowhere (the tool's reaction comes from the projection), and it
-// never reads the tool's own velocity, which after a jump of the tool is meaningless.
 // A contact with every field set, for resizing the soft body's list: Bullet leaves some of
 // RContact's vectors unset, and resize() copies its fill value into each new slot.
 const btSoftBody::RContact& blankContact() {
@@ -58,7 +50,15 @@ const btSoftBody::RContact& blankContact() {
   return blank;
 }
 
-// Fills contact, a blank one already in the soft body's list: Bullet's contact carries three
+// Makes contact one of Bullet's soft solver that keeps a node on the positive side of a plane. PSolve_RContacts
+// corrects x -= n·(dn + c4·dp) while dn <= 0, dn being the node's motion this step relative to
+// the contact body's, (x - q - v_body·dt)·n. A body that moves the node onto the plane makes dn
+// the node's distance in front of the plane: the contact stays idle while the node is in front,
+// and with c4 = 0 puts it back on the plane when an iteration of the links or the pressure
+// pushes it through; it never pulls it out further. The body has zero inverse mass, so the
+// solver's impulses on it go nowhere (the tool's reaction comes from the projection), and it
+// never reads the tool's own velocity, which after a jump of the tool is meaningless. contact is a
+// blank one already in the soft body's list: Bullet's contact carries three
 // btMultiBodyJacobianData, so building one aside and copying it in costs more than the rest.
 void fillHoldContact(btSoftBody::RContact& contact, btSoftBody::Node& node, const NodeHold& hold,
                      btRigidBody& holdBody, btScalar timeStep) {
