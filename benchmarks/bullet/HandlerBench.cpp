@@ -29,7 +29,8 @@
 // nodes (restored) and keeps memory from step to step (where it last left each node, which side it
 // came from), which the replay does not rewind: from the first replay on, each call sweeps the nodes
 // from where the previous call left them to their predicted positions, as in a run where the solver
-// moves nothing in between. The contacts counter is the replay's (stepContacts the real step's), and
+// moves nothing in between. Each replay also begins ThinTool's record of the collision pass again
+// (src/bullet/CollisionPass.h), as Bullet's box update does in a step. The contacts counter is the replay's (stepContacts the real step's), and
 // stepUs is the real step's time for the same pairs (stepDetectUs and stepFacesNear ThinTool's
 // detection in it), where stock builds distance field cells that the replays find built. facesNear is what ThinTool gathered, facesInSweptBox the faces that meet
 // the plate's swept box grown by the margin, nodesNear the nodes in stock's query box. The allocs
@@ -37,6 +38,8 @@
 //
 // Deviations from a run: no gravity or pressure, and the caches are warm (the replay revisits the
 // same data).
+
+#include "../../src/bullet/CollisionPass.h"
 
 #include <CountingAllocator.h>
 #include <SoftBallScene.h>
@@ -230,6 +233,11 @@ struct Replay {
       ball.m_nodes[i].m_x = x[i];
     }
     clearContacts();
+    if (scene->tool() != nullptr) {
+      // The nodes are back where the face tree was fitted around them: as far as ThinTool's record
+      // of the pass goes, the pass begins again (CollisionPass).
+      detail::beginCollisionPass(scene->world());
+    }
   }
 
   // Runs the pairs as the dispatcher does; returns the wall time (s).

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Zlib
 // Copyright (c) 2026 The ThinTool developers
+#include "CollisionPass.h"
 #include "PairState.h"
 #include "SweptProxy.h"
 #include "ToolAlgorithm.h"
@@ -69,7 +70,8 @@ struct CollisionConfiguration::CreateFunc : btCollisionAlgorithmCreateFunc {
 };
 
 CollisionConfiguration::CollisionConfiguration(const btDefaultCollisionConstructionInfo& info)
-    : btSoftBodyRigidBodyCollisionConfiguration(withRoomForToolAlgorithm(info)) {
+    : btSoftBodyRigidBodyCollisionConfiguration(withRoomForToolAlgorithm(info)),
+      m_pass(std::make_unique<detail::CollisionPass>()) {
   // Every convex type shares the stock soft–convex create functions; box stands for them all.
   m_createFunc = std::make_unique<CreateFunc>(
       *this, btSoftBodyRigidBodyCollisionConfiguration::getCollisionAlgorithmCreateFunc(SOFTBODY_SHAPE_PROXYTYPE,
@@ -163,6 +165,7 @@ Tool& CollisionConfiguration::addTool(btRigidBody& body, const ToolOptions& requ
 
   auto tool = std::make_unique<Tool>(body, options, std::move(models), std::move(transforms));
   Tool& registered = *tool;
+  registered.m_pass = m_pass.get();
   m_tools.emplace(&body, std::move(tool));
   ++m_toolsCreated;
   body.setActivationState(DISABLE_DEACTIVATION);
@@ -212,5 +215,7 @@ bool removeTool(btCollisionWorld& world, const btRigidBody& body) {
 }
 
 Tool* findTool(btCollisionWorld& world, const btRigidBody& body) { return configurationOf(world).findTool(body); }
+
+void detail::beginCollisionPass(btCollisionWorld& world) { configurationOf(world).m_pass->begin(); }
 
 }  // namespace thintool

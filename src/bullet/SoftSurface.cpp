@@ -130,9 +130,9 @@ void gatherFace(const btSoftBody& softBody, Index faceId, const Aabb& toolBox, P
 
 }  // namespace
 
-void ensureFaceTree(btSoftBody& softBody) {
+bool ensureFaceTree(btSoftBody& softBody) {
   if (!softBody.m_fdbvt.empty() || softBody.m_faces.size() == 0) {
-    return;
+    return false;
   }
   for (int i = 0; i < softBody.m_faces.size(); ++i) {
     btSoftBody::Face& face = softBody.m_faces[i];
@@ -140,6 +140,20 @@ void ensureFaceTree(btSoftBody& softBody) {
   }
   // The default threshold hands groups of up to 128 leaves to a cubic bottom-up pass.
   softBody.m_fdbvt.optimizeTopDown(8);
+  return true;
+}
+
+Real faceLeafSlack(const btSoftBody& softBody, Real nodeTravel) {
+  // predictMotion clears the face tree while m_bUpdateRtCst is set and clears the flag; until then
+  // its fitting margin (m_sst.radmrg) has not even been set.
+  const bool fitted = !softBody.m_bUpdateRtCst;
+  const bool poseMatched = softBody.m_pose.m_bframe && softBody.m_cfg.kMT > 0;
+  if (!fitted || poseMatched) {
+    return 0;
+  }
+  const Real margin = std::min<Real>(softBody.m_sst.radmrg, softBody.getCollisionShape()->getMargin());
+  const Real slack = std::max<Real>(margin, 0) - nodeTravel;
+  return std::isfinite(slack) ? slack : 0;
 }
 
 int surfaceOrientation(const btSoftBody& softBody) {
@@ -177,7 +191,8 @@ int surfaceOrientation(const btSoftBody& softBody) {
   return 0;
 }
 
-void gatherPatch(btSoftBody& softBody, const Aabb& toolBox, Real displacementBound, bool widen, PairState& state) {
+void gatherPatch(btSoftBody& softBody, const Aabb& toolBox, Real displacementBound, Real leafSlack, bool widen,
+                 PairState& state) {
   SoftPatch& patch = state.patch;
   if (state.patchVertexOfNode.size() != static_cast<std::size_t>(softBody.m_nodes.size())) {
     state.patchVertexOfNode.assign(softBody.m_nodes.size(), kInvalidIndex);
@@ -191,7 +206,15 @@ void gatherPatch(btSoftBody& softBody, const Aabb& toolBox, Real displacementBou
     }
     patch.clear();
     Real largestSquared = 0;
-    const btDbvtVolume walkBox = toVolume(toolBox.expanded(bound));
+    // A leaf spans its face grown by the slack, so shrinking the walk's box by the slack keeps
+    // every leaf whose face meets the grown box; Bullet rounded the leaf in btScalar, which the
+    // rounding allowance covers. The test compares interval ends only, so it stays right for a
+    // box shrunk past empty.
+    const Aabb grown = toolBox.expanded(bound);
+    const Real magnitude = std::max({std::abs(grown.min.x), std::abs(grown.min.y), std::abs(grown.min.z),
+                                     std::abs(grown.max.x), std::abs(grown.max.y), std::abs(grown.max.z)});
+    const Real rounding = 4 * Real(std::numeric_limits<btScalar>::epsilon()) * (1 + magnitude);
+    const btDbvtVolume walkBox = toVolume(grown.expanded(rounding - leafSlack));
     // First the faces whose leaves meet the walk, in the tree's order, then their nodes: reading
     // the nodes a few faces ahead of their use hides the wait for memory that reading them in the
     // walk would add to each leaf.

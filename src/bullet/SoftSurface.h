@@ -19,8 +19,18 @@ namespace thintool::detail {
 
 /// Builds the soft body's face tree if it has none. Bullet keeps a built tree up to date in every
 /// predictMotion; its own initializeFaceTree() compares every face with every other (quadratic),
-/// so ThinTool inserts the leaves itself and optimises the tree once.
-void ensureFaceTree(btSoftBody& softBody);
+/// so ThinTool inserts the leaves itself and optimises the tree once. True when it built one: its
+/// leaves then fit their faces exactly until Bullet next refits them.
+bool ensureFaceTree(btSoftBody& softBody);
+
+/// How far each leaf of the soft body's face tree is known to reach beyond its face on every side
+/// (m), for a walk to shrink its box by: Bullet's predictMotion fits each leaf around its face grown
+/// by the soft margin (lazily, so a leaf may be larger still), and nodeTravel (m) is how far the
+/// nodes may have moved since (CollisionPass). Negative when they may have moved out of their
+/// leaves: the walk then grows its box by as much. 0, as if the leaves fitted their faces exactly,
+/// when how far they moved is unknown: nodeTravel infinite, pose matching after the fit, or a body
+/// never predicted since its faces changed.
+Real faceLeafSlack(const btSoftBody& softBody, Real nodeTravel);
 
 /// +1 when the closed surface winds counter-clockwise seen from outside, -1 when inverted, 0 when
 /// the surface is open (some edge does not have exactly two faces) or encloses no volume.
@@ -30,9 +40,11 @@ int surfaceOrientation(const btSoftBody& softBody);
 /// start of the step (m_q) to its predicted end (m_x), and where ThinTool left their nodes last
 /// step. Bullet's face tree bounds each face only where it ends, so the walk looks
 /// displacementBound (m) beyond toolBox for faces that end away from it; with widen, when a
-/// gathered node moved farther, the walk widens and runs again. state.lastStep and
-/// state.lastPositions must be sized to the soft body's nodes.
-void gatherPatch(btSoftBody& softBody, const Aabb& toolBox, Real displacementBound, bool widen, PairState& state);
+/// gathered node moved farther, the walk widens and runs again. The walk's box is shrunk by
+/// leafSlack (faceLeafSlack), which leaves out only leaves whose faces cannot meet toolBox.
+/// state.lastStep and state.lastPositions must be sized to the soft body's nodes.
+void gatherPatch(btSoftBody& softBody, const Aabb& toolBox, Real displacementBound, Real leafSlack, bool widen,
+                 PairState& state);
 
 /// How far the soft body as a whole moved this step (m): the largest move of a side of its node
 /// tree's bounds since the pair's last step, or, in the pair's first step, the largest move of any

@@ -2,6 +2,8 @@
 // Copyright (c) 2026 The ThinTool developers
 #include "SweptProxy.h"
 
+#include "CollisionPass.h"
+
 #include <thintool/bullet/Convert.h>
 #include <thintool/bullet/Tool.h>
 
@@ -21,7 +23,12 @@ bool SweptProxy::checkCollideWithOverride(const btCollisionObject* other) const 
 }
 
 void SweptProxy::Shape::getAabb(const btTransform& /*transform*/, btVector3& outMin, btVector3& outMax) const {
+  // Bullet updates the boxes once a step, after predicting the soft bodies (which refits their
+  // face trees) and before dispatching the pairs.
   m_tool.trackMotion();
+  if (m_tool.m_pass != nullptr) {
+    m_tool.m_pass->begin();
+  }
   Pose before;
   Pose now;
   m_tool.bodyMotion(before, now);

@@ -2,6 +2,7 @@
 // Copyright (c) 2026 The ThinTool developers
 #include "ToolAlgorithm.h"
 
+#include "CollisionPass.h"
 #include "PairState.h"
 #include "SoftSurface.h"
 
@@ -99,13 +100,16 @@ void makeContactsLast(btSoftBody& softBody) {
 
 // Writes the corrections into the soft body: the moves, the solver's holds, and for a dynamic tool
 // the reaction. A correction that is not finite is counted and never written.
-// dynamicBody, when not null, is a dynamic tool that takes the moved nodes' reaction.
-void applyResponse(PairState& state, btSoftBody& softBody, btRigidBody* dynamicBody, btScalar timeStep) {
+// dynamicBody, when not null, is a dynamic tool that takes the moved nodes' reaction. Returns the
+// longest move written (m).
+Real applyResponse(PairState& state, btSoftBody& softBody, btRigidBody* dynamicBody, btScalar timeStep) {
+  Real longestSquared = 0;
   for (const NodeCorrection& correction : state.corrections) {
     if (!isFinite(correction.displacement) || !isFinite(correction.normal)) {
       ++state.rejectedCorrections;
       continue;
     }
+    longestSquared = std::max(longestSquared, lengthSquared(correction.displacement));
     btSoftBody::Node& node = softBody.m_nodes[static_cast<int>(state.patch.nodeIds[correction.vertex])];
     const btVector3 displacement = toBt(correction.displacement);
     node.m_x += displacement;
@@ -135,6 +139,7 @@ void applyResponse(PairState& state, btSoftBody& softBody, btRigidBody* dynamicB
     btSoftBody::Node& node = softBody.m_nodes[static_cast<int>(state.patch.nodeIds[hold.vertex])];
     fillHoldContact(softBody.m_rcontacts[slot++], node, hold, *state.holdBodies[holdsUsed++], timeStep);
   }
+  return std::sqrt(longestSquared);
 }
 
 btRigidBody* dynamicTool(const btCollisionObject& toolObject) {
@@ -248,7 +253,10 @@ void ToolAlgorithm::processValidPiece(PairState& state, btSoftBody& softBody, co
   const ToolOptions& options = m_tool.m_options;
   const ToolModel& model = m_tool.m_pieces[state.piece];
 
-  ensureFaceTree(softBody);
+  CollisionPass* pass = m_tool.m_pass;
+  if (ensureFaceTree(softBody) && pass != nullptr) {
+    pass->recordUnfittedTree();
+  }
   if (state.facesSeen != softBody.m_faces.size()) {
     state.facesSeen = softBody.m_faces.size();
     state.patch.orientation = surfaceOrientation(softBody);
@@ -276,7 +284,8 @@ void ToolAlgorithm::processValidPiece(PairState& state, btSoftBody& softBody, co
   // out as the soft nodes near the tool moved last step (the solver's pull adds to the motion), or
   // as the soft body moved as a whole this step, if farther.
   const Real motionBound = swept ? std::max(2 * state.softReach, softBodyMotion(softBody, state)) : 0;
-  gatherPatch(softBody, reach.expanded(skin), motionBound, swept, state);
+  const Real leafSlack = pass != nullptr ? faceLeafSlack(softBody, pass->nodeTravel()) : 0;
+  gatherPatch(softBody, reach.expanded(skin), motionBound, leafSlack, swept, state);
 
   if (swept) {
     ++state.step;
@@ -341,7 +350,10 @@ void ToolAlgorithm::processValidPiece(PairState& state, btSoftBody& softBody, co
   }
   btRigidBody* dynamicBody = dynamicTool(toolBody);
   const bool forceReacts = options.force.enabled && options.force.applyToDynamicTool;
-  applyResponse(state, softBody, forceReacts ? nullptr : dynamicBody, timeStep);
+  const Real moved = applyResponse(state, softBody, forceReacts ? nullptr : dynamicBody, timeStep);
+  if (pass != nullptr) {
+    pass->recordMoves(moved);
+  }
   if (options.force.enabled) {
     computeForces(state, softBody, pose, skin, timeStep, forceReacts ? dynamicBody : nullptr);
   }

@@ -37,6 +37,10 @@ struct btCollisionAlgorithmConstructionInfo;
 namespace thintool {
 
 class CollisionConfiguration;
+namespace detail {
+class CollisionPass;
+void beginCollisionPass(btCollisionWorld& world);
+}  // namespace detail
 Tool& addTool(btCollisionWorld& world, btRigidBody& body, const ToolOptions& options);
 bool removeTool(btCollisionWorld& world, const btRigidBody& body);
 
@@ -61,6 +65,7 @@ class CollisionConfiguration : public btSoftBodyRigidBodyCollisionConfiguration 
   // existing pairs; the configuration alone cannot reach the broadphase.
   friend Tool& addTool(btCollisionWorld&, btRigidBody&, const ToolOptions&);
   friend bool removeTool(btCollisionWorld&, const btRigidBody&);
+  friend void detail::beginCollisionPass(btCollisionWorld&);
   Tool& addTool(btRigidBody& body, const ToolOptions& options);
   bool removeTool(const btRigidBody& body);
 
@@ -74,6 +79,8 @@ class CollisionConfiguration : public btSoftBodyRigidBodyCollisionConfiguration 
   std::uint64_t m_toolsCreated = 0;
   std::unique_ptr<CreateFunc> m_createFunc;
   std::unique_ptr<CreateFunc> m_swappedCreateFunc;
+  /// Shared by the tools: how far their responses moved soft nodes in the current pass.
+  std::unique_ptr<detail::CollisionPass> m_pass;
 };
 
 /// Registers body as a thin tool of world, whose dispatcher must have been built with a

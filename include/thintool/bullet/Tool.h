@@ -92,6 +92,7 @@ struct ToolStepReport {
 class CollisionConfiguration;
 
 namespace detail {
+class CollisionPass;
 struct PairState;
 class ToolAlgorithm;
 class SweptProxy;
@@ -167,7 +168,9 @@ class Tool {
   SweptWorkspace m_sweptWorkspace;
   ResponseWorkspace m_responseWorkspace;
   ToolStepReport m_report;
-  Pose m_lastFiniteBodyPose;  // the report's frame when the body's transform is not finite
+  Pose m_lastFiniteBodyPose;
+  /// The configuration's record of the current collision pass; null for a tool made without one.
+  detail::CollisionPass* m_pass = nullptr;  // the report's frame when the body's transform is not finite
 };
 
 }  // namespace thintool
