@@ -23,18 +23,20 @@
 // ThinTool's own clock for its two parts (Tool::report), a cross-check of the measured time, and
 // detectUs alone is the detection stage.
 //
-// The stage is replayed, not stepped: the ball's nodes are captured when the dispatcher reaches
-// the tool's pairs in that step, and each iteration restores them near the tool (untimed) and runs
-// the pairs again. Stock's handler only appends contacts (cleared each iteration); ThinTool's moves
+// The stage is replayed, not stepped: the ball's nodes are captured when the dispatcher reaches the
+// tool's pairs in that step, and each iteration restores them near the tool (untimed) and runs the
+// pairs again. Stock's handler only appends contacts (cleared each iteration); ThinTool's moves
 // nodes (restored) and keeps memory from step to step (where it last left each node, which side it
-// came from), which the replay does not rewind: from the first replay on, each call sweeps the nodes
-// from where the previous call left them to their predicted positions, as in a run where the solver
-// moves nothing in between. Each replay also begins ThinTool's record of the collision pass again
-// (src/bullet/CollisionPass.h), as Bullet's box update does in a step. The contacts counter is the replay's (stepContacts the real step's), and
-// stepUs is the real step's time for the same pairs (stepDetectUs and stepFacesNear ThinTool's
-// detection in it), where stock builds distance field cells that the replays find built. facesNear is what ThinTool gathered, facesInSweptBox the faces that meet
-// the plate's swept box grown by the margin, nodesNear the nodes in stock's query box. The allocs
-// counter counts operator new and Bullet's allocator per replay.
+// came from), which the replay does not rewind: from the first replay on, each call sweeps the
+// nodes from where the previous call left them to their predicted positions, as in a run where the
+// solver moves nothing in between. Each replay also begins ThinTool's record of the collision pass
+// again (src/bullet/CollisionPass.h), as Bullet's box update does in a step. The contacts counter
+// is the replay's (stepContacts the real step's), and stepUs is the real step's time for the same
+// pairs (stepDetectUs and stepFacesNear ThinTool's detection in it), where stock builds distance
+// field cells that the replays find built. facesNear is what ThinTool gathered (facesWalked the
+// faces whose face-tree leaves its walk met), facesInSweptBox the faces that meet the plate's swept
+// box grown by the margin, nodesNear the nodes in stock's query box. The allocs counter counts
+// operator new and Bullet's allocator per replay.
 //
 // Deviations from a run: no gravity or pressure, and the caches are warm (the replay revisits the
 // same data).
@@ -294,6 +296,7 @@ void run(benchmark::State& state, Algorithm algorithm) {
   }
   double contacts = 0;
   double facesNear = 0;
+  double facesWalked = 0;
   double tests = 0;
   double detect = 0;
   double respond = 0;
@@ -307,6 +310,7 @@ void run(benchmark::State& state, Algorithm algorithm) {
       const thintool::ToolDiagnostics& d = tool->report().diagnostics;
       contacts += d.detection.colliding;
       facesNear += d.detection.facesGathered;
+      facesWalked += d.detection.facesWalked;
       tests += d.detection.triangleTests;
       detect += d.detectionMicroseconds;
       respond += d.responseMicroseconds;
@@ -329,6 +333,7 @@ void run(benchmark::State& state, Algorithm algorithm) {
   if (tool != nullptr) {
     state.counters["toolNodes"] = tool->nodeCount();
     state.counters["facesNear"] = facesNear / n;
+    state.counters["facesWalked"] = facesWalked / n;
     state.counters["facesInSweptBox"] = replay.facesInSweptBox;
     state.counters["tests"] = tests / n;
     state.counters["detectUs"] = detect / n;

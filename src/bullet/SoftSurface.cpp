@@ -191,8 +191,9 @@ int surfaceOrientation(const btSoftBody& softBody) {
   return 0;
 }
 
-void gatherPatch(btSoftBody& softBody, const Aabb& toolBox, Real displacementBound, Real leafSlack, bool widen,
-                 PairState& state) {
+Index gatherPatch(btSoftBody& softBody, const Aabb& toolBox, Real displacementBound, Real leafSlack, bool widen,
+                  PairState& state) {
+  Index walked = 0;
   SoftPatch& patch = state.patch;
   if (state.patchVertexOfNode.size() != static_cast<std::size_t>(softBody.m_nodes.size())) {
     state.patchVertexOfNode.assign(softBody.m_nodes.size(), kInvalidIndex);
@@ -228,6 +229,7 @@ void gatherPatch(btSoftBody& softBody, const Aabb& toolBox, Real displacementBou
          });
     constexpr std::size_t kLookAhead = 8;
     const std::size_t candidateCount = state.candidateFaces.size();
+    walked += static_cast<Index>(candidateCount);
     for (std::size_t c = 0; c < candidateCount; ++c) {
       if (c + kLookAhead < candidateCount) {
         const btSoftBody::Face& ahead = softBody.m_faces[static_cast<int>(state.candidateFaces[c + kLookAhead])];
@@ -244,6 +246,7 @@ void gatherPatch(btSoftBody& softBody, const Aabb& toolBox, Real displacementBou
     }
     bound = 2 * largestDisplacement;
   }
+  return walked;
 }
 
 Real softBodyMotion(const btSoftBody& softBody, PairState& state) {

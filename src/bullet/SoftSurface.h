@@ -42,8 +42,9 @@ int surfaceOrientation(const btSoftBody& softBody);
 /// displacementBound (m) beyond toolBox for faces that end away from it; with widen, when a
 /// gathered node moved farther, the walk widens and runs again. The walk's box is shrunk by
 /// leafSlack (faceLeafSlack), which leaves out only leaves whose faces cannot meet toolBox.
-/// state.lastStep and state.lastPositions must be sized to the soft body's nodes.
-void gatherPatch(btSoftBody& softBody, const Aabb& toolBox, Real displacementBound, Real leafSlack, bool widen,
+/// state.lastStep and state.lastPositions must be sized to the soft body's nodes. Returns how many
+/// faces the walk met, over all its runs.
+Index gatherPatch(btSoftBody& softBody, const Aabb& toolBox, Real displacementBound, Real leafSlack, bool widen,
                  PairState& state);
 
 /// How far the soft body as a whole moved this step (m): the largest move of a side of its node

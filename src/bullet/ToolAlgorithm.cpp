@@ -285,7 +285,7 @@ void ToolAlgorithm::processValidPiece(PairState& state, btSoftBody& softBody, co
   // as the soft body moved as a whole this step, if farther.
   const Real motionBound = swept ? std::max(2 * state.softReach, softBodyMotion(softBody, state)) : 0;
   const Real leafSlack = pass != nullptr ? faceLeafSlack(softBody, pass->nodeTravel()) : 0;
-  gatherPatch(softBody, reach.expanded(skin), motionBound, leafSlack, swept, state);
+  const Index walked = gatherPatch(softBody, reach.expanded(skin), motionBound, leafSlack, swept, state);
 
   if (swept) {
     ++state.step;
@@ -313,6 +313,7 @@ void ToolAlgorithm::processValidPiece(PairState& state, btSoftBody& softBody, co
     state.excludedNodes[1].assign(m_tool.m_detectionWorkspace.excludedByCheck2().begin(),
                                   m_tool.m_detectionWorkspace.excludedByCheck2().end());
   }
+  state.counters.facesWalked = walked;
   const auto detected = Clock::now();
 
   const btScalar timeStep = softBody.m_sst.sdt;

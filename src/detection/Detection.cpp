@@ -14,6 +14,7 @@ constexpr Real kNoHit = std::numeric_limits<Real>::max();
 
 void DetectionCounters::accumulate(const DetectionCounters& o) {
   facesGathered += o.facesGathered;
+  facesWalked += o.facesWalked;
   nodesTested += o.nodesTested;
   triangleTests += o.triangleTests;
   candidates += o.candidates;
