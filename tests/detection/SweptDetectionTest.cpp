@@ -1,0 +1,85 @@
+// SPDX-License-Identifier: Zlib
+// Copyright (c) 2026 The ThinTool developers
+//
+// Swept detection on one soft face and a needle-like box, in the tool's frame: the face's motion
+// over the step, and the soft solver's move of it since detection last left it.
+
+#include <thintool/detection/SweptDetection.h>
+
+#include <gtest/gtest.h>
+
+namespace thintool {
+namespace {
+
+constexpr Real kHalfLength = 0.5;
+constexpr Real kHalfWidth = 0.01;
+constexpr Real kSkin = 0.002;
+
+class OneFace : public ::testing::Test {
+ protected:
+  OneFace() : m_model(buildToolModel(makeBoxMesh({kHalfLength, kHalfWidth, kHalfWidth}), ToolModelSettings())) {
+    m_memory.resize(3, 1);
+  }
+
+  // A face across the needle's end, at x; its corners lie well outside the needle's section.
+  static std::vector<Vec3> faceAt(Real x) { return {{x, 0.1, -0.1}, {x, -0.1, -0.1}, {x, 0, 0.15}}; }
+
+  // One step of the face from start to end, the solver having moved it from checked to start since
+  // detection last saw it.
+  std::vector<Contact> step(const std::vector<Vec3>& checked, const std::vector<Vec3>& start,
+                            const std::vector<Vec3>& end) {
+    SoftPatch patch;
+    patch.positions = end;
+    patch.previousPositions = start;
+    patch.checkedPositions = checked;
+    patch.inverseMasses = {1, 1, 1};
+    patch.nodeIds = {0, 1, 2};
+    patch.faces = {{0, 1, 2}};
+    patch.faceIds = {0};
+    std::vector<Contact> contacts;
+    DetectionCounters counters;
+    const Pose still;
+    detectSwept(m_model, still, still, patch, kSkin, m_memory, m_work, contacts, counters);
+    return contacts;
+  }
+
+  // Whether the contacts hold the face beyond the needle's end, on the +x side, the skin away.
+  static bool holdBeyondTheEnd(const std::vector<Contact>& contacts) {
+    bool any = false;
+    for (const Contact& contact : contacts) {
+      EXPECT_EQ(contact.kind, ContactKind::ToolPoint);
+      EXPECT_GT(contact.normal.x, 0.99);
+      EXPECT_NEAR(-contact.offset / contact.normal.x, kHalfLength + kSkin, 1e-9);
+      any = true;
+    }
+    return any;
+  }
+
+  ToolModel m_model;
+  SideMemory m_memory;
+  SweptWorkspace m_work;
+};
+
+TEST_F(OneFace, AFaceSweptOverTheNeedlesEndIsHeldBeyondIt) {
+  EXPECT_TRUE(holdBeyondTheEnd(step(faceAt(0.6), faceAt(0.6), faceAt(0.45))));
+}
+
+// Known gap (README, Limitations): detection sweeps a face only over the step, from where the soft
+// solver left it, not over the solver's own move since detection last left it, as it does for the
+// nodes. Detection left this face 2 cm beyond the end; the soft solver then carried it 1 cm over
+// the end's corners, which pierce it now, though none of its nodes entered the needle; nothing
+// sends it back. Disabled until the face gets a response that does: sending such faces back along
+// their normals passes this test but, tried, made the needle end inside the ball in the swept
+// matrix at 1 m/s and 1/30 s (scripts/swept-matrix.sh).
+TEST_F(OneFace, DISABLED_AFaceTheSolverCarriedOverTheNeedlesEndGoesBackBeyondIt) {
+  EXPECT_TRUE(holdBeyondTheEnd(step(faceAt(0.52), faceAt(0.49), faceAt(0.49))));
+}
+
+TEST_F(OneFace, AFaceThatStaysBeyondTheSkinIsLeftAlone) {
+  EXPECT_TRUE(step(faceAt(0.60), faceAt(0.55), faceAt(0.55)).empty());
+  EXPECT_TRUE(step(faceAt(0.60), faceAt(0.51), faceAt(0.503)).empty());
+  EXPECT_FALSE(step(faceAt(0.60), faceAt(0.51), faceAt(0.501)).empty()) << "within the skin at the end";
+}
+
+}  // namespace
+}  // namespace thintool
