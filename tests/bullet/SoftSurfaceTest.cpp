@@ -31,7 +31,6 @@ struct Ball {
 
   Ball() {
     info.m_gravity.setZero();
-    info.m_sparsesdf.Initialize();
     body.reset(btSoftBodyHelpers::CreateEllipsoid(info, btVector3(0, 0, 0), btVector3(1, 1, 1), 512));
     body->getCollisionShape()->setMargin(kMargin);
     // Bullet's first prediction sets its margins up (and clears any face tree); the tree ThinTool

@@ -168,9 +168,9 @@ class Tool {
   SweptWorkspace m_sweptWorkspace;
   ResponseWorkspace m_responseWorkspace;
   ToolStepReport m_report;
-  Pose m_lastFiniteBodyPose;
+  Pose m_lastFiniteBodyPose;  // the report's frame when the body's transform is not finite
   /// The configuration's record of the current collision pass; null for a tool made without one.
-  detail::CollisionPass* m_pass = nullptr;  // the report's frame when the body's transform is not finite
+  detail::CollisionPass* m_pass = nullptr;
 };
 
 }  // namespace thintool
