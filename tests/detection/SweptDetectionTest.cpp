@@ -64,16 +64,13 @@ TEST_F(OneFace, AFaceSweptOverTheNeedlesEndIsHeldBeyondIt) {
   EXPECT_TRUE(holdBeyondTheEnd(step(faceAt(0.6), faceAt(0.6), faceAt(0.45))));
 }
 
-// Known gap (README, Limitations): detection sweeps a face only over the step, from where the soft
-// solver left it, not over the solver's own move since detection last left it, as it does for the
-// nodes. Detection left this face 2 cm beyond the end; the soft solver then carried it 1 cm over
-// the end's corners, which pierce it now, though none of its nodes entered the needle; nothing
-// sends it back. Disabled until the face gets a response that does: sending such faces back along
-// their normals passes this test but, tried, made the needle end inside the ball in the swept
-// matrix at 1 m/s and 1/30 s (scripts/swept-matrix.sh).
-TEST_F(OneFace, DISABLED_AFaceTheSolverCarriedOverTheNeedlesEndGoesBackBeyondIt) {
-  EXPECT_TRUE(holdBeyondTheEnd(step(faceAt(0.52), faceAt(0.49), faceAt(0.49))));
-}
+// Not yet a test, a known gap (README, Limits, today): detection sweeps a face only over the step,
+// not over the soft solver's own move since detection last left it, as it does for the nodes. With
+// step(faceAt(0.52), faceAt(0.49), faceAt(0.49)) the solver has carried the face 1 cm over the
+// needle's end corners, which pierce it, though none of its nodes entered the needle, and no
+// contact sends it back: holdBeyondTheEnd is false. Sending such faces back along their normals
+// makes it true but, tried, made the needle end inside the ball in the swept matrix at 1 m/s and
+// 1/30 s (scripts/swept-matrix.sh); the case becomes a test with a response that does not.
 
 TEST_F(OneFace, AFaceThatStaysBeyondTheSkinIsLeftAlone) {
   EXPECT_TRUE(step(faceAt(0.60), faceAt(0.55), faceAt(0.55)).empty());
