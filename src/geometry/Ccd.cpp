@@ -120,6 +120,7 @@ ClipResult clipSegmentConvex(const std::vector<Plane>& planes, Real grow, const 
   Real enter = 0;
   Real leave = 1;
   Index enterPlane = kInvalidIndex;
+  Index leavePlane = kInvalidIndex;
   for (Index p = 0; p < planes.size(); ++p) {
     const Real da = planes[p].signedDistance(a) - grow;
     const Real db = planes[p].signedDistance(b) - grow;
@@ -133,7 +134,11 @@ ClipResult clipSegmentConvex(const std::vector<Plane>& planes, Real grow, const 
         enterPlane = p;
       }
     } else if (db > 0) {  // leaving through it
-      leave = std::min(leave, da / (da - db));
+      const Real t = da / (da - db);
+      if (t < leave) {
+        leave = t;
+        leavePlane = p;
+      }
     }
   }
   if (enter > leave) {
@@ -143,6 +148,7 @@ ClipResult clipSegmentConvex(const std::vector<Plane>& planes, Real grow, const 
   result.enter = enter;
   result.leave = leave;
   result.enterPlane = enterPlane;
+  result.leavePlane = leavePlane;
   return result;
 }
 

@@ -12,7 +12,7 @@ namespace {
 
 constexpr Real kTolerance = 1e-9;
 
-TEST(ClipSegmentConvex, EntersThroughTheFaceItCrossesFirst) {
+TEST(ClipSegmentConvex, EntersThroughTheFaceItCrossesFirstAndLeavesThroughTheLast) {
   const ConvexMesh plate = makeBoxMesh({0.4, 0.01, 0.4});
   const std::vector<Plane> planes = facePlanes(plate);
   // Straight up through the plate, from 0.05 below to 0.05 above.
@@ -24,10 +24,20 @@ TEST(ClipSegmentConvex, EntersThroughTheFaceItCrossesFirst) {
   EXPECT_NEAR(planes[through.enterPlane].normal.y, -1, kTolerance);
   // Grown by a 0.02 skin, it enters earlier.
   EXPECT_NEAR(clipSegmentConvex(planes, 0.02, {0.1, -0.05, 0}, {0.1, 0.05, 0}).enter, 0.2, kTolerance);
+  ASSERT_NE(through.leavePlane, kInvalidIndex);
+  EXPECT_NEAR(planes[through.leavePlane].normal.y, 1, kTolerance);
   // Starting inside: no entry face.
   const ClipResult inside = clipSegmentConvex(planes, 0, {0.1, 0, 0}, {0.1, 0.05, 0});
   ASSERT_TRUE(inside.hit);
   EXPECT_EQ(inside.enterPlane, kInvalidIndex);
+  EXPECT_NEAR(planes[inside.leavePlane].normal.y, 1, kTolerance);
+  // Ending inside: no leaving face.
+  EXPECT_EQ(clipSegmentConvex(planes, 0, {0.1, -0.05, 0}, {0.1, 0, 0}).leavePlane, kInvalidIndex);
+  // Round the +x rim: in through the underside, out through the side.
+  const ClipResult corner = clipSegmentConvex(planes, 0, {0.35, -0.05, 0}, {0.45, 0.05, 0});
+  ASSERT_TRUE(corner.hit);
+  EXPECT_NEAR(planes[corner.enterPlane].normal.y, -1, kTolerance);
+  EXPECT_NEAR(planes[corner.leavePlane].normal.x, 1, kTolerance);
   // Beside the plate.
   EXPECT_FALSE(clipSegmentConvex(planes, 0, {0.5, -0.05, 0}, {0.5, 0.05, 0}).hit);
 }

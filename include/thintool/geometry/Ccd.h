@@ -35,6 +35,7 @@ struct ClipResult {
   Real enter = 0;         ///< fraction where it enters (0 when it starts inside)
   Real leave = 1;         ///< fraction where it leaves (1 when it ends inside)
   Index enterPlane = kInvalidIndex;  ///< plane it enters through; kInvalidIndex when it starts inside
+  Index leavePlane = kInvalidIndex;  ///< plane it leaves through; kInvalidIndex when it ends inside
 };
 
 /// Clips the segment a → b against the convex solid {x : plane.signedDistance(x) <= grow, all planes}.
