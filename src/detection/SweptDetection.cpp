@@ -46,6 +46,10 @@ struct Sweep {
   const SoftPatch& patch;
   Real skin;
   Real onSurface;
+  /// How far inside the tool grown by the skin the solver may leave a node it held on that
+  /// surface (m): rounding, in Bullet's float build 1e-8 m. The node slid along the surface and
+  /// did not enter.
+  Real heldOnSurface;
   SideMemory& memory;
   const std::vector<Vec3>& start;
   const std::vector<Vec3>& end;
@@ -91,7 +95,7 @@ struct Sweep {
   void softNode(Index v, const Vec3* checked) {
     Index solverEntry = kInvalidIndex;
     if (checked != nullptr) {
-      const ClipResult during = clipSegmentConvex(model.planes, skin, *checked, start[v]);
+      const ClipResult during = clipSegmentConvex(model.planes, skin - heldOnSurface, *checked, start[v]);
       solverEntry = during.hit ? during.enterPlane : kInvalidIndex;
     }
     const ClipResult clip = clipSegmentConvex(model.planes, skin, start[v], end[v]);
@@ -278,7 +282,8 @@ void detectSwept(const ToolModel& model, const Pose& previousPose, const Pose& p
   const Real size = length(model.bounds.extent());
   // The projection onto a face admits barycentric coordinates down to -kOverlapTolerance.
   const Real tolerance = kOverlapTolerance * size;
-  Sweep sweep{model, pose, patch, skin, kOnSurface * size, memory, work.m_start, work.m_end, outContacts, outCounters};
+  Sweep sweep{model,  pose,         patch,      skin,        kOnSurface * size, tolerance,
+              memory, work.m_start, work.m_end, outContacts, outCounters};
 
   // Soft nodes against the solid.
   const Aabb grownTool = model.bounds.expanded(skin);

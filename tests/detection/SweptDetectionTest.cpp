@@ -78,5 +78,24 @@ TEST_F(OneFace, AFaceThatStaysBeyondTheSkinIsLeftAlone) {
   EXPECT_FALSE(step(faceAt(0.60), faceAt(0.51), faceAt(0.501)).empty()) << "within the skin at the end";
 }
 
+TEST_F(OneFace, ANodeTheSolverSlidAlongTheGrownEndWithinRoundingDidNotEnter) {
+  // The solver's holds keep a node on the needle's end grown by the skin (x = 0.502), up to
+  // rounding: one slid there from above the needle down to its axis, then moved clear, has not
+  // entered from above, and nothing sends it over the needle.
+  const Real grownEnd = kHalfLength + kSkin;
+  const auto face = [](const Vec3& onAxis, Real x) {
+    return std::vector<Vec3>{onAxis, {x, 0.1, -0.1}, {x, -0.1, -0.1}};
+  };
+  const std::vector<Vec3> checked = face({grownEnd + 1e-9, 0.03, 0}, 0.51);
+  const std::vector<Vec3> end = face({0.51, 0, 0}, 0.51);
+  EXPECT_TRUE(step(checked, face({grownEnd - 1e-9, 0, 0}, 0.51), end).empty());
+  // Pushed 10 um in, it did enter, by the needle's side, and goes back that way.
+  m_memory.forget();
+  const std::vector<Contact> entered = step(checked, face({grownEnd - 1e-5, 0, 0}, 0.51), end);
+  ASSERT_FALSE(entered.empty());
+  EXPECT_EQ(entered[0].kind, ContactKind::SoftNode);
+  EXPECT_GT(entered[0].normal.y, 0.99);
+}
+
 }  // namespace
 }  // namespace thintool
