@@ -2,6 +2,8 @@
 // Copyright (c) 2026 The ThinTool developers
 #include <thintool/response/Response.h>
 
+#include <thintool/geometry/Ccd.h>
+
 #include <algorithm>
 #include <limits>
 
@@ -40,6 +42,20 @@ Real depthBehindEntryFace(const ToolModel& model, const Pose& toolPose, const Po
   outsideDistance(model, previousToolPose.applyInverse(previousPosition), &entry);
   outNormal = toolPose.applyToDirection(model.planes[entry].normal);
   return skin - model.planes[entry].signedDistance(local);
+}
+
+// The tool face through which a node's straight path over the step, from start (tool frame at the
+// step's start) to end (tool frame now), enters the tool grown by the skin and then leaves it again:
+// the side it came from, when the response carried it across or round the tool. kInvalidIndex when
+// the path misses the tool, ends inside it, or starts inside it. A node that starts in the skin is
+// tested against the tool grown by half its distance, so that it starts outside.
+Index planeMovedThrough(const ToolModel& model, const Vec3& start, const Vec3& end, Real skin) {
+  const Real grow = std::min(skin, outsideDistance(model, start) / 2);
+  if (!(grow > 0)) {
+    return kInvalidIndex;
+  }
+  const ClipResult path = clipSegmentConvex(model.planes, grow, start, end);
+  return path.hit && path.leavePlane != kInvalidIndex ? path.enterPlane : kInvalidIndex;
 }
 
 // Friction for each moved node (FrictionSettings). The tool's surface motion at a node is that of
@@ -214,6 +230,9 @@ void computeResponse(const ToolModel& model, const Pose& toolPose, const Pose& p
 
     // Pass 4: a face's contact moves its nodes along the face's normal, which near a rim can carry
     // a node into the tool from a side no contact speaks for. Such a node leaves again as in pass 2.
+    // Carried across the tool, or round its rim, from where the step began, a node goes back to
+    // the face it came by: contacts and detection's sides are per face, and a face wrapped round a
+    // rim can push one of its nodes over the tool while the face itself ends on its own side.
     for (NodeCorrection& correction : outCorrections) {
       const Index vertex = correction.vertex;
       Vec3 normal;
@@ -222,6 +241,16 @@ void computeResponse(const ToolModel& model, const Pose& toolPose, const Pose& p
       if (depth > 0) {
         work.m_positions[vertex] += normal * depth;
         correction.normal = normal;
+        continue;
+      }
+      const Index entry = planeMovedThrough(model, previousToolPose.applyInverse(patch.previousPositions[vertex]),
+                                            toolPose.applyInverse(work.m_positions[vertex]), skin);
+      if (entry != kInvalidIndex) {
+        const Plane& face = model.planes[entry];
+        const Vec3 faceNormal = toolPose.applyToDirection(face.normal);
+        work.m_positions[vertex] +=
+            faceNormal * (skin - face.signedDistance(toolPose.applyInverse(work.m_positions[vertex])));
+        correction.normal = faceNormal;
       }
     }
 

@@ -207,6 +207,44 @@ TEST(Response, TheNodeGuardSendsASlippedNodeBackToTheSideItCameFrom) {
   EXPECT_TRUE(unguarded.corrections.empty());
 }
 
+// A face beside the plate's +x rim, its two outer corners pinned, whose contact pushes the free
+// corner in and up along a normal tilted over the plate, to where the free corner was and is now.
+Vec3 pushedOverTheRim(const Vec3& startOfStep, const Vec3& now, const Vec3& target) {
+  Fixture f;
+  const Index a = f.vertex({0.3, 0.03, -0.1}, 0);
+  const Index free = f.vertex(now, 2, &startOfStep);
+  const Index c = f.vertex({0.3, 0.03, 0.1}, 0);
+  const Index face = f.face(a, free, c);
+  Contact contact;
+  contact.kind = ContactKind::ToolPoint;
+  contact.patchFace = face;
+  contact.softNodeCount = 3;
+  contact.patchVertices = f.patch.faces[face];
+  contact.barycentric = {0.25, 0.5, 0.25};
+  contact.normal = normalizedOrZero(target - now);
+  const Vec3 point = f.patch.positions[a] * 0.25 + now * 0.5 + f.patch.positions[c] * 0.25;
+  // The plane that the free corner's move to target puts the contact point on.
+  contact.offset = -dot(contact.normal, point) - length(target - now) * 0.5;
+  f.contacts.push_back(contact);
+  f.respond();
+  return f.finalPosition(free);
+}
+
+TEST(Response, ANodeAFaceContactWouldCarryAcrossThePlateGoesBackToTheFaceItCameBy) {
+  // Below the plate and beside it at the start of the step, beside and level with it now: pushed
+  // to over the plate, 12 cm above its top, its path from the start runs through the plate. It
+  // goes back under the underside, the skin away.
+  const Vec3 across = pushedOverTheRim({0.25, -0.05, 0}, {0.25, 0.03, 0}, {0.05, 0.13, 0});
+  EXPECT_NEAR(across.y, -kSkin, 1e-12);
+  EXPECT_NEAR(across.x, 0.05, 1e-12);
+
+  // Pushed in less, to over the rim, its path passes round the rim, clear of the tool and its
+  // skin: it stays where the contact put it.
+  const Vec3 round = pushedOverTheRim({0.25, -0.05, 0}, {0.25, 0.03, 0}, {0.15, 0.13, 0});
+  EXPECT_NEAR(round.x, 0.15, 1e-12);
+  EXPECT_NEAR(round.y, 0.13, 1e-12);
+}
+
 TEST(Response, AHoldKeepsANodeOnTheSideItCameFrom) {
   // A node the plate passed beside its +x rim: below the plate at the start of the step, now above
   // it and still beside. It is farther in front of the top face than of the +x face, but held
