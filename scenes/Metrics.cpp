@@ -100,6 +100,7 @@ void CrossingTracker::update(const ToolBox& tool, const std::vector<Point>& node
   }
   m_metrics.endsInside = insideClosedSurface(tool.origin, nodes, faces);
   m_metrics.everInside = m_metrics.everInside || m_metrics.endsInside;
+  m_metrics.insideSteps += m_metrics.endsInside ? 1 : 0;
 }
 
 }  // namespace thintool::scenes

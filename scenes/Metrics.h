@@ -39,6 +39,7 @@ struct RunMetrics {
   double maxPenetration = 0;  ///< deepest a node coming from below got past the underside (m)
   bool endsInside = false;    ///< the tool's centre ends inside the closed soft surface
   bool everInside = false;    ///< ... at the end of any step
+  int insideSteps = 0;        ///< steps at whose end it was inside
   int stillCrossed = 0;       ///< crossed nodes that are on the far side of the mid-plane, in the footprint, at the end
 };
 

@@ -2,13 +2,13 @@
 // Copyright (c) 2026 The ThinTool developers
 //
 // Swept detection (the default) on the team's baseline scene with a realistic skin (soft margin
-// 0.05): plate and needle, speeds 0.1 to 50 m/s, steps 1/30 to 1/1000 s.
+// 0.05): plate and needle, speeds 0.1 to 50 m/s, steps 1/30 to 1/1000 s; the full matrix.
 //
-// Wherever the tool moves up to a third of the ball's radius in a step (0.33 m), no node crosses it
-// and it never ends a step inside the ball. The matrix's three faster cases (20 m/s at 1/30 s,
-// 50 m/s at 1/30 and 1/60 s: 0.67 to 1.67 m a step) crush the ball by up to a metre in one step;
-// their outcome is chaotic, differs between Bullet's float and float64 builds, and is reported in
-// README and docs/swept-matrix.md (scripts/swept-matrix.sh) rather than asserted here.
+// No node crosses the tool, and it never ends a step inside the ball, up to 0.83 m a step. In the
+// fastest case, 50 m/s at 1/30 s, the tool moves 1.67 m a step into a ball of radius 1 and crushes
+// it to its centre in one step; no node crosses it either, but in Bullet's float build the ball,
+// rebounding during the hold, wraps round the tool (plate and needle) and closes over it for one
+// step of the eight, no node having passed through it; it is open again at the end.
 
 #include "SoftBallScene.h"
 
@@ -25,11 +25,9 @@ struct Case {
   double stepsPerSecond;
 };
 
-constexpr double kBallRadius = 1;
-
 class SweptMatrix : public ::testing::TestWithParam<Case> {};
 
-TEST_P(SweptMatrix, NoNodeThroughTheToolAndNeverInsideTheBall) {
+TEST_P(SweptMatrix, NoNodeThroughTheToolAndNotLeftInsideTheBall) {
   const Case c = GetParam();
   PressSettings settings;
   settings.scene.algorithm = Algorithm::ThinTool;
@@ -38,7 +36,8 @@ TEST_P(SweptMatrix, NoNodeThroughTheToolAndNeverInsideTheBall) {
   settings.speed = c.speed;
   const PressResult r = runPress(settings);
   EXPECT_EQ(r.metrics.crossed, 0);
-  EXPECT_FALSE(r.metrics.everInside);
+  EXPECT_FALSE(r.metrics.endsInside);
+  EXPECT_LE(r.metrics.insideSteps, c.speed / c.stepsPerSecond > 1 ? 1 : 0);
   EXPECT_GT(r.maxContacts, 0) << "the tool did press the ball";
 }
 
@@ -47,9 +46,7 @@ std::vector<Case> matrix() {
   for (ToolShape tool : {ToolShape::Plate, ToolShape::Needle}) {
     for (double rate : {30.0, 60.0, 240.0, 1000.0}) {
       for (double speed : {0.1, 1.0, 5.0, 20.0, 50.0}) {
-        if (speed / rate <= kBallRadius / 3) {
-          cases.push_back({tool, speed, rate});
-        }
+        cases.push_back({tool, speed, rate});
       }
     }
   }
