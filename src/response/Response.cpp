@@ -50,11 +50,19 @@ Real depthBehindEntryFace(const ToolModel& model, const Pose& toolPose, const Po
 // the path misses the tool, ends inside it, or starts inside it. A node that starts in the skin is
 // tested against the tool grown by half its distance, so that it starts outside.
 Index planeMovedThrough(const ToolModel& model, const Vec3& start, const Vec3& end, Real skin) {
+  // Most moved nodes stay in front of one face: the clip against the whole skin rejects them at
+  // that face, and a path that misses it misses any thinner skin too.
+  ClipResult path = clipSegmentConvex(model.planes, skin, start, end);
+  if (!path.hit) {
+    return kInvalidIndex;
+  }
   const Real grow = std::min(skin, outsideDistance(model, start) / 2);
   if (!(grow > 0)) {
     return kInvalidIndex;
   }
-  const ClipResult path = clipSegmentConvex(model.planes, grow, start, end);
+  if (grow < skin) {
+    path = clipSegmentConvex(model.planes, grow, start, end);
+  }
   return path.hit && path.leavePlane != kInvalidIndex ? path.enterPlane : kInvalidIndex;
 }
 
@@ -235,21 +243,20 @@ void computeResponse(const ToolModel& model, const Pose& toolPose, const Pose& p
     // rim can push one of its nodes over the tool while the face itself ends on its own side.
     for (NodeCorrection& correction : outCorrections) {
       const Index vertex = correction.vertex;
-      Vec3 normal;
-      const Real depth = depthBehindEntryFace(model, toolPose, previousToolPose, patch.previousPositions[vertex],
-                                              work.m_positions[vertex], skin, normal);
-      if (depth > 0) {
-        work.m_positions[vertex] += normal * depth;
-        correction.normal = normal;
-        continue;
+      const Vec3 startLocal = previousToolPose.applyInverse(patch.previousPositions[vertex]);
+      const Vec3 endLocal = toolPose.applyInverse(work.m_positions[vertex]);
+      Index entry = kInvalidIndex;
+      if (outsideDistance(model, endLocal, &entry) < skin) {
+        outsideDistance(model, startLocal, &entry);
+      } else if (model.planes[entry].signedDistance(startLocal) > skin) {
+        entry = kInvalidIndex;  // in front of the same face all along: the path misses the tool
+      } else {
+        entry = planeMovedThrough(model, startLocal, endLocal, skin);
       }
-      const Index entry = planeMovedThrough(model, previousToolPose.applyInverse(patch.previousPositions[vertex]),
-                                            toolPose.applyInverse(work.m_positions[vertex]), skin);
       if (entry != kInvalidIndex) {
         const Plane& face = model.planes[entry];
         const Vec3 faceNormal = toolPose.applyToDirection(face.normal);
-        work.m_positions[vertex] +=
-            faceNormal * (skin - face.signedDistance(toolPose.applyInverse(work.m_positions[vertex])));
+        work.m_positions[vertex] += faceNormal * (skin - face.signedDistance(endLocal));
         correction.normal = faceNormal;
       }
     }
