@@ -47,8 +47,8 @@ struct Sweep {
   Real skin;
   Real onSurface;
   /// How far inside the tool grown by the skin the solver may leave a node it held on that
-  /// surface (m): rounding, in Bullet's float build 1e-8 m. The node slid along the surface and
-  /// did not enter.
+  /// surface (m), by rounding (4e-9 m seen in Bullet's float build): such a node slid along the
+  /// surface and did not enter.
   Real heldOnSurface;
   SideMemory& memory;
   const std::vector<Vec3>& start;

@@ -89,7 +89,8 @@ TEST_F(OneFace, ANodeTheSolverSlidAlongTheGrownEndWithinRoundingDidNotEnter) {
   const std::vector<Vec3> checked = face({grownEnd + 1e-9, 0.03, 0}, 0.51);
   const std::vector<Vec3> end = face({0.51, 0, 0}, 0.51);
   EXPECT_TRUE(step(checked, face({grownEnd - 1e-9, 0, 0}, 0.51), end).empty());
-  // Pushed 10 um in, it did enter, by the needle's side, and goes back that way.
+  // Slid 10 um inside the grown end, it did enter, through the grown top face it came down past,
+  // and goes back out that way.
   m_memory.forget();
   const std::vector<Contact> entered = step(checked, face({grownEnd - 1e-5, 0, 0}, 0.51), end);
   ASSERT_FALSE(entered.empty());
