@@ -208,7 +208,8 @@ TEST(Response, TheNodeGuardSendsASlippedNodeBackToTheSideItCameFrom) {
 }
 
 // A face beside the plate's +x rim, its two outer corners pinned, whose contact pushes the free
-// corner in and up along a normal tilted over the plate, to where the free corner was and is now.
+// corner in and up along a normal tilted over the plate, to target. Returns where the free corner
+// ends, given where it was at the start of the step and where it is now.
 Vec3 pushedOverTheRim(const Vec3& startOfStep, const Vec3& now, const Vec3& target) {
   Fixture f;
   const Index a = f.vertex({0.3, 0.03, -0.1}, 0);
@@ -231,15 +232,15 @@ Vec3 pushedOverTheRim(const Vec3& startOfStep, const Vec3& now, const Vec3& targ
 }
 
 TEST(Response, ANodeAFaceContactWouldCarryAcrossThePlateGoesBackToTheFaceItCameBy) {
-  // Below the plate and beside it at the start of the step, beside and level with it now: pushed
-  // to over the plate, 12 cm above its top, its path from the start runs through the plate. It
-  // goes back under the underside, the skin away.
+  // Below the plate and beside it at the start of the step, beside it and just above its top now:
+  // pushed to 15 cm in from the rim and 11 cm above the top, its path from the start runs through
+  // the plate. It goes back under the underside, the skin away.
   const Vec3 across = pushedOverTheRim({0.25, -0.05, 0}, {0.25, 0.03, 0}, {0.05, 0.13, 0});
   EXPECT_NEAR(across.y, -kSkin, 1e-12);
   EXPECT_NEAR(across.x, 0.05, 1e-12);
 
-  // Pushed in less, to over the rim, its path passes round the rim, clear of the tool and its
-  // skin: it stays where the contact put it.
+  // Pushed in less, to 5 cm in from the rim, its path passes round the rim, clear of the tool and
+  // its skin: it stays where the contact put it.
   const Vec3 round = pushedOverTheRim({0.25, -0.05, 0}, {0.25, 0.03, 0}, {0.15, 0.13, 0});
   EXPECT_NEAR(round.x, 0.15, 1e-12);
   EXPECT_NEAR(round.y, 0.13, 1e-12);
