@@ -38,6 +38,8 @@ std::string validateToolOptions(const ToolOptions& options) {
                options.response.friction.kineticCoefficient <= options.response.friction.staticCoefficient)) {
     problem << "response.friction.kineticCoefficient must be finite, >= 0 and <= staticCoefficient, got "
             << options.response.friction.kineticCoefficient;
+  } else if (options.separation.enabled && !validateSeparationSettings(options.separation).empty()) {
+    problem << validateSeparationSettings(options.separation);
   } else if (options.force.enabled) {
     const HuntCrossley& hc = options.force.huntCrossley;
     if (!(std::isfinite(hc.stiffness) && hc.stiffness >= 0)) {

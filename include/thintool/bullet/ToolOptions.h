@@ -9,6 +9,7 @@
 #include <thintool/detection/Detection.h>
 #include <thintool/force/ContactForce.h>
 #include <thintool/response/Response.h>
+#include <thintool/response/Separation.h>
 #include <thintool/tool/ToolModel.h>
 
 #include <string>
@@ -36,6 +37,10 @@ struct ToolOptions {
   /// contact's side from the motion).
   FilterSettings filters;
   ResponseSettings response;
+  /// The last word (response/Separation.h): after Bullet's soft solver, no soft node is left
+  /// inside the tool and no soft face pierced by it. Runs only in a world whose soft-body solver is
+  /// a thintool::SoftBodySolver.
+  SeparationSettings separation;
   /// The tissue's force on the tool (force/ContactForce.h): off by default.
   ForceSettings force;
 

@@ -11,6 +11,7 @@
 
 #include <array>
 #include <string>
+#include <limits>
 #include <vector>
 
 namespace thintool {
@@ -36,6 +37,20 @@ std::string validateConvexMesh(const ConvexMesh& mesh);
 
 /// Outward face planes of a valid mesh, one per triangle.
 std::vector<Plane> facePlanes(const ConvexMesh& mesh);
+
+/// The largest signed distance of p over the planes of a convex solid: positive outside, minus
+/// the depth to the nearest face inside. outPlane, when given, receives the plane that has it.
+inline Real outsideDistance(const std::vector<Plane>& planes, const Vec3& p, Index* outPlane = nullptr) {
+  Real best = -std::numeric_limits<Real>::max();
+  for (Index k = 0; k < static_cast<Index>(planes.size()); ++k) {
+    const Real distance = planes[k].signedDistance(p);
+    if (distance > best) {
+      best = distance;
+      if (outPlane != nullptr) *outPlane = k;
+    }
+  }
+  return best;
+}
 
 Aabb bounds(const ConvexMesh& mesh);
 

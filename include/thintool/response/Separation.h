@@ -1,0 +1,129 @@
+// SPDX-License-Identifier: Zlib
+// Copyright (c) 2026 The ThinTool developers
+#pragma once
+
+/// @file
+/// The last word: after the soft solver has moved the nodes for the step (links, pressure, its
+/// own contacts), every soft feature near a tool piece is put back on its side of the piece, so
+/// that no soft node ends a step inside a tool and no tool feature ends it through a soft face.
+///
+/// Sources: the moves are position projections after Müller et al., "Position based dynamics"
+/// (2007), a face's move shared by its nodes in proportion to inverse mass; whether a triangle
+/// meets a convex piece is the separating-axis test (Gottschalk, Lin and Manocha, "OBBTree", 1996:
+/// the piece's face normals, the triangle's normal, and the cross products of their edges).
+/// Deviations, and why:
+/// - A node's side is read from its own path, not from the nearest face: its straight move from
+///   the start of the step to where the solver left it, seen from the piece as the piece moves
+///   along its arc (rotation interpolated about one axis, sampled every `maxTurnPerSample`). A node
+///   inside the piece leaves through the face its path entered by; a node whose path went in by
+///   one face and out by a face turned away from it (it was carried through) goes back in front
+///   of the face it entered by. The nearest face would send a node that crossed more than half
+///   the piece's thickness out of the far side.
+/// - A pierced face moves along its own normal, away from the side the piece was on at the start
+///   of the step within the triangle's prism (the piece's part over the triangle lies on one side
+///   of it while the face is not pierced); without that memory, the side where less of the piece
+///   lies. The move is the piece's extent past the triangle within its prism: a needle's tip in a
+///   face's interior moves the face just past the tip, a plate's rim through a coarse face moves
+///   the face past the rim.
+/// - Node moves and face moves alternate (Gauss–Seidel) for at most `maxRounds`; what is still
+///   violated then is counted, never hidden.
+
+#include <thintool/tool/ToolModel.h>
+
+#include <array>
+#include <vector>
+
+namespace thintool {
+
+struct SeparationSettings {
+  /// Runs the stage (in thintool::SoftBodySolver). Off, it costs nothing.
+  bool enabled = true;
+  /// How far outside the piece a corrected node or face is put (m, > 0): rounding in Bullet's
+  /// float build must not carry it back in.
+  Real clearance = 1e-5;
+  /// Most alternations of node and face moves in a step (>= 1).
+  int maxRounds = 8;
+  /// Largest turn of the piece between two samples of its arc (radians, > 0).
+  Real maxTurnPerSample = Real(5) * kPi / 180;
+};
+
+/// The soft features near one tool piece, in the world frame, gathered by the glue.
+struct SeparationPatch {
+  std::vector<Vec3> positions;       ///< where the solver left each node; corrected in place
+  std::vector<Vec3> startPositions;  ///< where each node began the step
+  std::vector<Real> inverseMasses;   ///< 0: pinned, never moved
+  std::vector<std::array<Index, 3>> faces;  ///< patch vertex indices
+  std::vector<Index> nodeIds;        ///< the caller's ids, one per vertex
+  /// Output: the stage moved the vertex.
+  std::vector<unsigned char> moved;
+
+  Index vertexCount() const { return static_cast<Index>(positions.size()); }
+  Index addVertex(Index id, const Vec3& start, const Vec3& end, Real inverseMass) {
+    nodeIds.push_back(id);
+    startPositions.push_back(start);
+    positions.push_back(end);
+    inverseMasses.push_back(inverseMass);
+    moved.push_back(0);
+    return static_cast<Index>(positions.size() - 1);
+  }
+  void clear() {
+    positions.clear();
+    startPositions.clear();
+    inverseMasses.clear();
+    faces.clear();
+    nodeIds.clear();
+    moved.clear();
+  }
+};
+
+/// What the stage did to one patch, and what it left.
+struct SeparationCounts {
+  Index nodesMoved = 0;    ///< node moves (a node moved in two rounds counts twice)
+  Index facesMoved = 0;    ///< face moves
+  Index nodesInside = 0;   ///< left inside the piece by more than half the clearance (expected 0)
+  Index facesPierced = 0;  ///< left meeting the piece by more than half the clearance (expected 0)
+  int rounds = 0;
+
+  void accumulate(const SeparationCounts& o) {
+    nodesMoved += o.nodesMoved;
+    facesMoved += o.facesMoved;
+    nodesInside += o.nodesInside;
+    facesPierced += o.facesPierced;
+    rounds = rounds > o.rounds ? rounds : o.rounds;
+  }
+};
+
+/// How a piece moves during the step: its pose at the start and at the end, the turn between
+/// them as one rotation about a fixed axis, and how many samples keep each under the settings'
+/// largest turn.
+class PieceMotion {
+ public:
+  PieceMotion(const Pose& start, const Pose& end, Real maxTurnPerSample);
+  /// The pose at fraction t of the step: translation linear, rotation about the fixed axis.
+  Pose at(Real t) const;
+  int samples() const { return m_samples; }
+  const Pose& start() const { return m_start; }
+  const Pose& end() const { return m_end; }
+  Real turn() const { return m_angle; }
+
+ private:
+  Pose m_start;
+  Pose m_end;
+  Vec3 m_axis{1, 0, 0};  // in the start pose's frame
+  Real m_angle = 0;
+  int m_samples = 1;
+};
+
+/// Puts the patch's nodes and faces back on their side of the piece (see the file comment).
+/// Writes positions and moved; returns what it did and what is left.
+SeparationCounts separateFromPiece(const ToolModel& piece, const PieceMotion& motion,
+                                   const SeparationSettings& settings, SeparationPatch& patch);
+
+/// Whether triangle (a, b, c) and the piece, all in the piece's frame, overlap by more than
+/// tolerance along every separating axis.
+bool triangleMeetsPiece(const ToolModel& piece, const Vec3& a, const Vec3& b, const Vec3& c, Real tolerance);
+
+/// Describes the first invalid setting, or returns an empty string.
+std::string validateSeparationSettings(const SeparationSettings& settings);
+
+}  // namespace thintool

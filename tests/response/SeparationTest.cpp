@@ -1,0 +1,172 @@
+// SPDX-License-Identifier: Zlib
+// Copyright (c) 2026 The ThinTool developers
+#include <thintool/response/Separation.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace thintool {
+namespace {
+
+constexpr Real kClearance = SeparationSettings{}.clearance;
+
+// A 0.4 × 0.02 × 0.4 plate centred at the origin (thin along y), or a 1 m × 2 mm × 2 mm needle
+// along x.
+ToolModel plate() { return buildToolModel(makeBoxMesh({0.2, 0.01, 0.2}), ToolModelSettings{}); }
+ToolModel needle() { return buildToolModel(makeBoxMesh({0.5, 0.001, 0.001}), ToolModelSettings{}); }
+
+Pose at(const Vec3& translation) {
+  Pose pose;
+  pose.translation = translation;
+  return pose;
+}
+
+struct Patch {
+  SeparationPatch patch;
+  Index node(const Vec3& start, const Vec3& end, Real inverseMass = 1) {
+    return patch.addVertex(patch.vertexCount(), start, end, inverseMass);
+  }
+};
+
+Real outside(const ToolModel& piece, const Pose& pose, const Vec3& world) {
+  return outsideDistance(piece.planes, pose.applyInverse(world));
+}
+
+TEST(Separation, NodeInsideLeavesThroughTheFaceItEnteredBy) {
+  const ToolModel piece = plate();
+  Patch p;
+  // Came from above and was left 15 mm deep, past the mid-plane: the nearest face is the bottom.
+  const Index v = p.node({0.05, 0.03, 0}, {0.05, -0.005, 0});
+  const SeparationCounts counts = separateFromPiece(piece, PieceMotion(Pose{}, Pose{}, 0.1), {}, p.patch);
+  EXPECT_EQ(counts.nodesMoved, 1u);
+  EXPECT_EQ(counts.nodesInside, 0u);
+  EXPECT_NEAR(p.patch.positions[v].y, 0.01 + kClearance, 1e-12);
+  EXPECT_EQ(p.patch.positions[v].x, 0.05);
+  EXPECT_EQ(p.patch.moved[v], 1);
+}
+
+TEST(Separation, NodeCarriedThroughGoesBackAndOneRoundTheRimStays) {
+  const ToolModel piece = plate();
+  Patch p;
+  const Index through = p.node({0.1, 0.05, 0}, {0.1, -0.05, 0});
+  const Index round = p.node({0.22, 0.05, 0}, {0.21, -0.05, 0});  // passes beside the +x rim
+  // Cuts the +x rim's lower corner: in by the rim, out by the bottom; it goes back beside the rim.
+  const Index corner = p.node({0.25, 0.05, 0}, {0.15, -0.05, 0});
+  separateFromPiece(piece, PieceMotion(Pose{}, Pose{}, 0.1), {}, p.patch);
+  EXPECT_NEAR(p.patch.positions[through].y, 0.01 + kClearance, 1e-12);
+  EXPECT_EQ(p.patch.positions[round].y, -0.05);
+  EXPECT_EQ(p.patch.moved[round], 0);
+  EXPECT_NEAR(p.patch.positions[corner].x, 0.2 + kClearance, 1e-12);
+  EXPECT_EQ(p.patch.positions[corner].y, -0.05);
+}
+
+TEST(Separation, ATurnSweepsAlongItsArcNotItsChord) {
+  const ToolModel piece = plate();
+  // The plate turns a quarter turn about z in one step: its +x half sweeps up through y > 0.
+  Pose end;
+  end.rotation = rotationAboutAxis({0, 0, 1}, kPi / 2);
+  const PieceMotion motion(Pose{}, end, SeparationSettings{}.maxTurnPerSample);
+  EXPECT_NEAR(motion.turn(), kPi / 2, 1e-12);
+  EXPECT_EQ(motion.samples(), 18);
+  Patch p;
+  // Above the plate at x = 0.1 and still there: the end pose does not hold it (it is beside the
+  // turned plate), but the arc went through it, so it was carried; it goes to the plate's top
+  // face, now facing -x.
+  const Index swept = p.node({0.1, 0.02, 0}, {0.1, 0.02, 0});
+  // Below the plate on the same side: the arc moved away from it.
+  const Index spared = p.node({0.1, -0.02, 0}, {0.1, -0.02, 0});
+  separateFromPiece(piece, motion, {}, p.patch);
+  EXPECT_EQ(p.patch.moved[spared], 0);
+  EXPECT_EQ(p.patch.moved[swept], 1);
+  const Vec3 local = end.applyInverse(p.patch.positions[swept]);
+  EXPECT_NEAR(local.y, 0.01 + kClearance, 1e-9);
+  EXPECT_LT(p.patch.positions[swept].x, -0.01);
+}
+
+TEST(Separation, HalfTurnAxisIsRecovered) {
+  Pose end;
+  end.rotation = rotationAboutAxis(normalizedOrZero({1, 2, 3}), kPi);
+  end.translation = {1, 2, 3};
+  const PieceMotion motion(Pose{}, end, 0.1);
+  EXPECT_NEAR(motion.turn(), kPi, 1e-9);
+  const Pose atEnd = motion.at(1 - 1e-12);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(length(atEnd.rotation.row[i] - end.rotation.row[i]), 0, 1e-7);  // the axis of a half turn is good to √ε
+  }
+  const Pose half = motion.at(0.5);
+  EXPECT_NEAR(length(half.translation - Vec3{0.5, 1, 1.5}), 0, 1e-12);
+}
+
+TEST(Separation, NeedleTipInAFaceInteriorMovesTheFacePastTheTip) {
+  const ToolModel piece = needle();
+  // A 0.4 m triangle in the plane x = 0.45 facing +x; the needle's tip (x = 0.5) came through it
+  // from x < 0.45 while the face stood still: every node stays outside the needle.
+  Patch p;
+  const Vec3 corners[3] = {{0.45, -0.2, -0.2}, {0.45, 0.2, -0.2}, {0.45, 0, 0.3}};
+  Index v[3];
+  for (int k = 0; k < 3; ++k) v[k] = p.node(corners[k], corners[k]);
+  p.patch.faces.push_back({v[0], v[1], v[2]});
+  const Pose start = at({-0.1, 0, 0});  // the tip at x = 0.4, short of the face
+  EXPECT_TRUE(triangleMeetsPiece(piece, corners[0], corners[1], corners[2], 0));
+  const SeparationCounts counts = separateFromPiece(piece, PieceMotion(start, Pose{}, 0.1), {}, p.patch);
+  EXPECT_EQ(counts.facesMoved, 1u);
+  EXPECT_EQ(counts.facesPierced, 0u);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(p.patch.positions[v[k]].x, 0.5 + kClearance, 1e-9);  // past the tip, along +x
+  }
+  EXPECT_FALSE(triangleMeetsPiece(piece, p.patch.positions[v[0]], p.patch.positions[v[1]], p.patch.positions[v[2]],
+                                  0));
+}
+
+TEST(Separation, FaceSideComesFromTheStartOfTheStep) {
+  const ToolModel piece = plate();
+  // A large face under the plate, which came down through it by 15 mm in one step: most of the
+  // plate is now below the face, yet the plate was above it, so the face goes below the plate.
+  Patch p;
+  const Vec3 corners[3] = {{-1, 0.005, -1}, {1, 0.005, -1}, {0, 0.005, 1}};
+  Index v[3];
+  for (int k = 0; k < 3; ++k) v[k] = p.node(corners[k], corners[k]);
+  p.patch.faces.push_back({v[0], v[2], v[1]});
+  separateFromPiece(piece, PieceMotion(at({0, 0.02, 0}), Pose{}, 0.1), {}, p.patch);
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(p.patch.positions[v[k]].y, -0.01 - kClearance, 1e-9);
+}
+
+TEST(Separation, PinnedNodesNeverMoveAndWhatIsLeftIsCounted) {
+  const ToolModel piece = plate();
+  Patch p;
+  const Index pinned = p.node({0, 0.03, 0}, {0, 0, 0}, 0);
+  const SeparationCounts counts = separateFromPiece(piece, PieceMotion(Pose{}, Pose{}, 0.1), {}, p.patch);
+  EXPECT_EQ(p.patch.positions[pinned].y, 0);
+  EXPECT_EQ(counts.nodesInside, 1u);
+}
+
+TEST(Separation, FacesOfMovableNodesShareAPinnedNeighboursMove) {
+  const ToolModel piece = needle();
+  Patch p;
+  const Vec3 corners[3] = {{0.45, -0.2, -0.2}, {0.45, 0.2, -0.2}, {0.45, 0, 0.3}};
+  const Index a = p.node(corners[0], corners[0], 0);
+  const Index b = p.node(corners[1], corners[1]);
+  const Index c = p.node(corners[2], corners[2]);
+  p.patch.faces.push_back({a, b, c});
+  separateFromPiece(piece, PieceMotion(at({-0.1, 0, 0}), Pose{}, 0.1), {}, p.patch);
+  EXPECT_EQ(p.patch.positions[a].x, 0.45);
+  EXPECT_GT(p.patch.positions[b].x, 0.5);
+  EXPECT_FALSE(triangleMeetsPiece(piece, p.patch.positions[a], p.patch.positions[b], p.patch.positions[c], 0));
+}
+
+TEST(Separation, SettingsAreValidated) {
+  EXPECT_TRUE(validateSeparationSettings({}).empty());
+  SeparationSettings bad;
+  bad.clearance = 0;
+  EXPECT_FALSE(validateSeparationSettings(bad).empty());
+  bad = {};
+  bad.maxRounds = 0;
+  EXPECT_FALSE(validateSeparationSettings(bad).empty());
+  bad = {};
+  bad.maxTurnPerSample = std::nan("");
+  EXPECT_FALSE(validateSeparationSettings(bad).empty());
+}
+
+}  // namespace
+}  // namespace thintool
