@@ -8,6 +8,7 @@
 #include <thintool/bullet/Clamp.h>
 #include <thintool/bullet/CollisionConfiguration.h>
 #include <thintool/bullet/Convert.h>
+#include <thintool/bullet/SoftBodySolver.h>
 #include <thintool/bullet/Tool.h>
 #include <thintool/bullet/ToolOptions.h>
 #include <thintool/core/Error.h>

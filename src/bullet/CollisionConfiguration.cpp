@@ -167,13 +167,20 @@ Tool& CollisionConfiguration::addTool(btRigidBody& body, const ToolOptions& requ
   Tool& registered = *tool;
   registered.m_pass = m_pass.get();
   m_tools.emplace(&body, std::move(tool));
+  m_toolOrder.push_back(&registered);
   ++m_toolsCreated;
   body.setActivationState(DISABLE_DEACTIVATION);
   return registered;
 }
 
 bool CollisionConfiguration::removeTool(const btRigidBody& body) {
-  return m_tools.erase(&body) != 0;
+  const auto found = m_tools.find(&body);
+  if (found == m_tools.end()) {
+    return false;
+  }
+  m_toolOrder.erase(std::find(m_toolOrder.begin(), m_toolOrder.end(), found->second.get()));
+  m_tools.erase(found);
+  return true;
 }
 
 Tool* CollisionConfiguration::findTool(const btCollisionObject& object) const {

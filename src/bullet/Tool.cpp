@@ -32,7 +32,10 @@ Tool::Tool(btRigidBody& body, const ToolOptions& options, std::vector<ToolModel>
 
 Tool::~Tool() = default;
 
-void Tool::resetMotion() { m_jumpNext = true; }
+void Tool::resetMotion() {
+  m_jumpNext = true;
+  m_separationJump = true;
+}
 
 namespace {
 
@@ -135,6 +138,7 @@ const ToolStepReport& Tool::report() {
   contactForce.torque = Vec3{};
   contactForce.faces.clear();
   ToolDiagnostics& diagnostics = m_report.diagnostics;
+  diagnostics.lastWord = m_lastWord;
   // A pose that is not finite was skipped by the step (the pairs held the tissue at the last good
   // one): report about that one too, so that no NaN reaches the report.
   Pose bodyPose = toPose(m_body.getWorldTransform());

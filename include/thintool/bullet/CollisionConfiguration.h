@@ -26,6 +26,7 @@
 #include <cstdint>
 #include <memory>
 #include <unordered_map>
+#include <vector>
 
 class btCollisionAlgorithm;
 class btCollisionObject;
@@ -59,6 +60,8 @@ class CollisionConfiguration : public btSoftBodyRigidBodyCollisionConfiguration 
   /// Bytes ThinTool's collision algorithm takes from the dispatcher's pool.
   static int algorithmSize();
   std::size_t toolCount() const { return m_tools.size(); }
+  /// The registered tools, in the order they were added.
+  const std::vector<Tool*>& tools() const { return m_toolOrder; }
 
  private:
   // Registration goes through thintool::addTool/removeTool, which also re-route the body's
@@ -74,6 +77,7 @@ class CollisionConfiguration : public btSoftBodyRigidBodyCollisionConfiguration 
                                         const btCollisionObjectWrapper* body1, bool swapped,
                                         btCollisionAlgorithmCreateFunc& stock);
   std::unordered_map<const btCollisionObject*, std::unique_ptr<Tool>> m_tools;
+  std::vector<Tool*> m_toolOrder;  // the same tools in registration order, so that steps are repeatable
   /// Swept tools' broadphase proxies, and their tools.
   std::unordered_map<const btCollisionObject*, Tool*> m_proxies;
   std::uint64_t m_toolsCreated = 0;

@@ -38,6 +38,18 @@ struct ToolExcludedNode {
   int check = 1;  ///< 1 or 2
 };
 
+/// What the last word did in the latest step, over the tool's pieces and soft bodies.
+struct LastWordDiagnostics {
+  /// False when the world's soft-body solver is not a thintool::SoftBodySolver, or the stage is
+  /// switched off: nothing then stops Bullet's solver from leaving nodes inside the tool.
+  bool ran = false;
+  SeparationCounts counts;  ///< moves made, and violations left (counts.nodesInside, counts.facesPierced)
+  double microseconds = 0;
+  /// Soft nodes left inside the tool or soft faces left pierced by it after the stage: the
+  /// invariant, expected 0.
+  Index violations() const { return counts.nodesInside + counts.facesPierced; }
+};
+
 struct ToolDiagnostics {
   DetectionCounters detection;  ///< summed over the tool's pieces and soft bodies
   Index pairs = 0;              ///< (piece, soft body) pairs processed in the step
@@ -55,6 +67,8 @@ struct ToolDiagnostics {
   Index rejectedCorrections = 0;
   /// Pairs skipped because the tool's transform was not finite.
   Index invalidPosePairs = 0;
+  /// The last word (thintool::SoftBodySolver and response/Separation.h), after the soft solver.
+  LastWordDiagnostics lastWord;
 };
 
 /// The tissue's force on one soft face in contact (force/ContactForce.h).
@@ -91,6 +105,7 @@ struct ToolStepReport {
 
 class CollisionConfiguration;
 
+class SoftBodySolver;
 namespace detail {
 class CollisionPass;
 struct PairState;
@@ -135,6 +150,7 @@ class Tool {
   friend class detail::ToolAlgorithm;
   friend class detail::SweptProxy;
   friend class CollisionConfiguration;
+  friend class SoftBodySolver;
   friend Tool& addTool(btCollisionWorld&, btRigidBody&, const ToolOptions&);
   friend bool removeTool(btCollisionWorld&, const btRigidBody&);
   detail::PairState& pairState(btSoftBody& softBody, Index piece);
@@ -168,6 +184,12 @@ class Tool {
   SweptWorkspace m_sweptWorkspace;
   ResponseWorkspace m_responseWorkspace;
   ToolStepReport m_report;
+  /// The last word's view of the motion: the body's pose when the stage last ran (the start of
+  /// this step), whether it has one, and whether resetMotion() declared the next move a jump.
+  Pose m_separatedPose;
+  bool m_hasSeparatedPose = false;
+  bool m_separationJump = false;
+  LastWordDiagnostics m_lastWord;
   Pose m_lastFiniteBodyPose;  // the report's frame when the body's transform is not finite
   /// The configuration's record of the current collision pass; null for a tool made without one.
   detail::CollisionPass* m_pass = nullptr;

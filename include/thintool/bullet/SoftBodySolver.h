@@ -1,0 +1,54 @@
+// SPDX-License-Identifier: Zlib
+// Copyright (c) 2026 The ThinTool developers
+#pragma once
+
+/// @file
+/// The last word: a soft-body solver to pass to btSoftRigidDynamicsWorld or
+/// btSoftMultiBodyDynamicsWorld where btDefaultSoftBodySolver was.
+///
+///     thintool::CollisionConfiguration configuration;
+///     thintool::SoftBodySolver softBodySolver(configuration);
+///     btSoftRigidDynamicsWorld world(&dispatcher, &broadphase, &constraintSolver, &configuration,
+///                                    &softBodySolver);
+///
+/// Bullet runs the world's soft-body solver after the collision pass, and the solver moves the
+/// nodes again (links, pressure, its own contacts): whatever the collision pass did, the soft
+/// solver has the last word on where a node ends the step. This one runs Bullet's own solve
+/// unchanged, then, for every tool of the configuration whose ToolOptions::separation is enabled,
+/// puts every soft node and face near the tool back on its side (response/Separation.h) and sets
+/// the moved nodes' velocities as Bullet's solve does, v = (x − x_start)·(1 − kDP)/dt. A dynamic
+/// tool receives the moved nodes' reaction as impulses. Soft bodies that ignore the tool
+/// (m_collisionDisabledObjects) are left alone. Tool::report() says what the stage did and what
+/// it left (ToolDiagnostics::lastWord).
+
+#include <thintool/response/Separation.h>
+
+#include <BulletSoftBody/btDefaultSoftBodySolver.h>
+
+#include <vector>
+
+class btSoftBody;
+
+namespace thintool {
+
+class CollisionConfiguration;
+class Tool;
+
+class SoftBodySolver : public btDefaultSoftBodySolver {
+ public:
+  /// configuration: the world's, whose tools get the last word; it must outlive the solver.
+  explicit SoftBodySolver(CollisionConfiguration& configuration);
+
+  // See: btDefaultSoftBodySolver::solveConstraints
+  void solveConstraints(btScalar timeStep) override;
+
+ private:
+  void separate(Tool& tool);
+  SeparationCounts separatePiece(Tool& tool, const ToolModel& piece, const PieceMotion& motion, btSoftBody& softBody);
+
+  CollisionConfiguration& m_configuration;
+  SeparationPatch m_patch;
+  std::vector<Index> m_vertexOfNode;  // soft node -> patch vertex, kInvalidIndex when absent
+};
+
+}  // namespace thintool
