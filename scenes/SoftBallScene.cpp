@@ -165,7 +165,7 @@ struct SoftBallScene::Bullet {
   std::unique_ptr<btCollisionDispatcher> dispatcher;
   btDbvtBroadphase broadphase;
   btSequentialImpulseConstraintSolver constraintSolver;
-  btDefaultSoftBodySolver softSolver;
+  std::unique_ptr<btSoftBodySolver> softSolver;
   btBoxShape groundShape{btVector3(20, 1, 20)};
   btDefaultMotionState groundMotion;
   std::unique_ptr<btRigidBody> ground;
@@ -181,13 +181,16 @@ SoftBallScene::SoftBallScene(const SceneSettings& settings) : m_settings(setting
   const SoftVariant variant = softVariantOf(settings.algorithm);
   const bool thinTool = settings.algorithm == Algorithm::ThinTool || settings.algorithm == Algorithm::ThinToolPaper;
   if (thinTool) {
-    b.configuration = std::make_unique<thintool::CollisionConfiguration>();
+    auto configuration = std::make_unique<thintool::CollisionConfiguration>();
+    b.softSolver = std::make_unique<thintool::SoftBodySolver>(*configuration);
+    b.configuration = std::move(configuration);
   } else {
     b.configuration = std::make_unique<btSoftBodyRigidBodyCollisionConfiguration>();
+    b.softSolver = std::make_unique<btDefaultSoftBodySolver>();
   }
   b.dispatcher = std::make_unique<btCollisionDispatcher>(b.configuration.get());
   m_world = std::make_unique<btSoftRigidDynamicsWorld>(b.dispatcher.get(), &b.broadphase, &b.constraintSolver,
-                                                       b.configuration.get(), &b.softSolver);
+                                                       b.configuration.get(), b.softSolver.get());
   m_world->setGravity(btVector3(0, -10, 0));
   btSoftBodyWorldInfo& info = m_world->getWorldInfo();
   info.m_gravity = m_world->getGravity();

@@ -3,13 +3,12 @@
 #pragma once
 
 /// @file
-/// A btSoftRigidDynamicsWorld on ThinTool's collision configuration, with the parts Bullet wants
+/// A btSoftRigidDynamicsWorld on ThinTool's collision configuration and soft-body solver, with the parts Bullet wants
 /// kept alive beside it, for scenes and tests that build their own bodies. Gravity is set on the
 /// world and on its soft-body world info alike (Bullet keeps the two apart).
 
 #include <thintool/thintool.h>
 
-#include <BulletSoftBody/btDefaultSoftBodySolver.h>
 #include <BulletSoftBody/btSoftRigidDynamicsWorld.h>
 #include <btBulletDynamicsCommon.h>
 
@@ -20,7 +19,7 @@ struct SoftWorld {
   btCollisionDispatcher dispatcher{&configuration};
   btDbvtBroadphase broadphase;
   btSequentialImpulseConstraintSolver solver;
-  btDefaultSoftBodySolver softSolver;
+  SoftBodySolver softSolver{configuration};
   btSoftRigidDynamicsWorld world{&dispatcher, &broadphase, &solver, &configuration, &softSolver};
 
   explicit SoftWorld(const btVector3& gravity = btVector3(0, -10, 0)) {

@@ -7,7 +7,6 @@
 
 #include <thintool/thintool.h>
 
-#include <BulletSoftBody/btDefaultSoftBodySolver.h>
 #include <BulletSoftBody/btSoftBodyHelpers.h>
 #include <BulletSoftBody/btSoftRigidDynamicsWorld.h>
 #include <btBulletDynamicsCommon.h>
@@ -20,12 +19,13 @@ int main() {
   constexpr int kHoldSteps = 60;
   constexpr btScalar kPressSpeed = 0.5;
 
-  // 1. ThinTool's configuration where btSoftBodyRigidBodyCollisionConfiguration was.
+  // 1. ThinTool's configuration where btSoftBodyRigidBodyCollisionConfiguration was ...
   thintool::CollisionConfiguration collisionConfiguration;
   btCollisionDispatcher dispatcher(&collisionConfiguration);
   btDbvtBroadphase broadphase;
   btSequentialImpulseConstraintSolver constraintSolver;
-  btDefaultSoftBodySolver softBodySolver;
+  // ... and ThinTool's soft-body solver where btDefaultSoftBodySolver was: it has the last word.
+  thintool::SoftBodySolver softBodySolver(collisionConfiguration);
   btSoftRigidDynamicsWorld world(&dispatcher, &broadphase, &constraintSolver, &collisionConfiguration,
                                  &softBodySolver);
   world.setGravity(btVector3(0, -10, 0));
