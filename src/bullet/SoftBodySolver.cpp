@@ -84,14 +84,13 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
                                                btSoftBody& softBody) {
   const Real clearance = tool.m_options.separation.clearance;
   const Aabb swept = sweptBounds(piece.bounds, motion).expanded(clearance);
-  const Aabb atEnd = worldBounds(piece.bounds, motion.end()).expanded(clearance);
   const int nodeCount = softBody.m_nodes.size();
   if (m_vertexOfNode.size() < static_cast<std::size_t>(nodeCount)) {
     m_vertexOfNode.resize(static_cast<std::size_t>(nodeCount), kInvalidIndex);
   }
 
-  // Gather: the nodes whose move this step meets the piece's reach, and the faces that meet the
-  // piece's box at the end of the step, with their nodes.
+  // Gather: the nodes and the faces whose moves this step meet the piece's reach, with the faces'
+  // nodes.
   m_patch.clear();
   const btSoftBody::Node* first = nodeCount > 0 ? &softBody.m_nodes[0] : nullptr;
   const auto vertexOf = [&](const btSoftBody::Node& node) {
@@ -110,9 +109,12 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
   }
   for (int f = 0; f < softBody.m_faces.size(); ++f) {
     const btSoftBody::Face& face = softBody.m_faces[f];
-    Aabb box = Aabb::fromPoints(toVec3(face.m_n[0]->m_x), toVec3(face.m_n[1]->m_x));
-    box.include(toVec3(face.m_n[2]->m_x));
-    if (atEnd.overlaps(box)) {
+    Aabb box;
+    for (const btSoftBody::Node* node : face.m_n) {
+      box.include(toVec3(node->m_x));
+      box.include(toVec3(node->m_q));
+    }
+    if (swept.overlaps(box)) {
       m_patch.faces.push_back({vertexOf(*face.m_n[0]), vertexOf(*face.m_n[1]), vertexOf(*face.m_n[2])});
     }
   }

@@ -18,8 +18,6 @@ namespace {
 constexpr Real kTurnedAway = Real(0.5);
 // Samples of the arc: a turn of 180° at 5° a sample needs 36; the cap only guards settings.
 constexpr int kMostSamples = 64;
-// A point counts as over a triangle (in its prism) within this fraction of the triangle's size.
-constexpr Real kPrismSlack = 1e-9;
 
 // The rotation R with R = rotationAboutAxis(axis, angle), angle in [0, π].
 void axisAngleOf(const Mat3& r, Vec3& outAxis, Real& outAngle) {
@@ -87,73 +85,113 @@ NodeVerdict judgeNode(const ToolModel& piece, const PieceMotion& motion, const P
   return {};
 }
 
-// The heights above the plane of triangle (a, b, c) (along its unit normal) of the piece's part
-// over the triangle, the triangle's prism: its lowest and highest. False when no part of the
-// piece lies over the triangle.
-bool heightsOverTriangle(const ToolModel& piece, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& normal,
-                         Real& outLowest, Real& outHighest) {
-  outLowest = std::numeric_limits<Real>::max();
-  outHighest = -std::numeric_limits<Real>::max();
-  const auto include = [&](Real height) {
-    outLowest = std::min(outLowest, height);
-    outHighest = std::max(outHighest, height);
-  };
-  const TriangleProjector projector(a, b, c);
-  const auto over = [&](const Vec3& p) {
-    Vec3 barycentric;
-    return projector.project(p, barycentric) && barycentric.x >= -kPrismSlack && barycentric.y >= -kPrismSlack &&
-           barycentric.z >= -kPrismSlack;
-  };
-  // The part over the triangle is a convex solid; its highest and lowest points are among the
-  // piece's corners over the triangle, the piece's edges through the prism's sides, and the
-  // prism's edges through the piece.
-  const std::vector<Vec3>& corners = piece.mesh.vertices;
-  for (const Vec3& v : corners) {
-    if (over(v)) include(dot(normal, v - a));
-  }
-  const Vec3 triangle[3] = {a, b, c};
-  for (int side = 0; side < 3; ++side) {
-    const Vec3& p0 = triangle[side];
-    const Vec3& p1 = triangle[(side + 1) % 3];
-    const Vec3 sideNormal = cross(normal, p1 - p0);
-    for (const auto& edge : piece.featureEdges) {
-      const Vec3& u0 = corners[edge[0]];
-      const Vec3& u1 = corners[edge[1]];
-      const Real s0 = dot(sideNormal, u0 - p0);
-      const Real s1 = dot(sideNormal, u1 - p0);
-      if ((s0 < 0) == (s1 < 0)) continue;
-      const Vec3 crossing = u0 + (u1 - u0) * (s0 / (s0 - s1));
-      if (over(crossing)) include(dot(normal, crossing - a));
+// The separating-axis test of a triangle against the piece, both in the piece's frame: the
+// piece's face normals, the triangle's normal, and the cross products of their edges. With the
+// triangle's place at the start of the step as well (in the piece's frame then), it also says
+// whether the triangle kept its side, that is, whether some axis separates it from the piece on
+// the same side at both ends of the step, and if not, the shortest move that puts it back on a
+// side it had at the start. A face that kept no side went into or through the piece during the
+// step, even if it no longer meets it.
+class TriangleAxes {
+ public:
+  TriangleAxes(const ToolModel& piece, const Vec3* end, const Vec3* start, Real tolerance)
+      : m_piece(piece), m_end(end), m_start(start), m_tolerance(tolerance) {
+    const std::vector<Vec3>& corners = m_piece.mesh.vertices;
+    for (const Plane& plane : m_piece.planes) {
+      if (visit(plane.normal)) return;
     }
-    // The line p0 + s·normal clipped by the piece's planes.
-    Real low = -std::numeric_limits<Real>::max();
-    Real high = std::numeric_limits<Real>::max();
-    for (const Plane& plane : piece.planes) {
-      const Real along = dot(plane.normal, normal);
-      const Real distance = plane.signedDistance(p0);
-      if (std::abs(along) < Real(1e-12)) {
-        if (distance > 0) {
-          high = -1;
-          low = 1;
-          break;
-        }
-        continue;
-      }
-      const Real bound = -distance / along;
-      if (along > 0) {
-        high = std::min(high, bound);
-      } else {
-        low = std::max(low, bound);
+    const Vec3 edges[3] = {end[1] - end[0], end[2] - end[1], end[0] - end[2]};
+    if (visit(cross(edges[0], end[2] - end[0]))) return;
+    for (const auto& edge : m_piece.featureEdges) {
+      const Vec3 direction = corners[edge[1]] - corners[edge[0]];
+      for (const Vec3& e : edges) {
+        if (visit(cross(direction, e))) return;
       }
     }
-    if (low <= high) {
-      const Real base = dot(normal, p0 - a);
-      include(base + low);
-      include(base + high);
+  }
+
+  /// The triangle meets the piece at the end of the step, by more than the tolerance on every axis.
+  bool meets() const { return m_meets; }
+  /// Some axis separates the triangle from the piece on one side at the start and at the end.
+  bool keptItsSide() const { return m_kept; }
+  /// The move (piece frame) that puts the triangle back on a side it had at the start, clearance
+  /// included; with no such side, the shortest move that clears the piece. Zero when none is due.
+  Vec3 move(Real clearance) const {
+    if (m_kept) return {};
+    if (m_bestConsistent < std::numeric_limits<Real>::max()) return m_consistentDirection * (m_bestConsistent + clearance);
+    return m_meets ? m_anyDirection * (m_bestAny + clearance) : Vec3{};
+  }
+
+ private:
+  static void interval(const Vec3& axis, const Vec3* points, std::size_t count, Real& low, Real& high) {
+    low = std::numeric_limits<Real>::max();
+    high = -low;
+    for (std::size_t k = 0; k < count; ++k) {
+      const Real p = dot(axis, points[k]);
+      low = std::min(low, p);
+      high = std::max(high, p);
     }
   }
-  return outLowest <= outHighest;
-}
+
+  // Returns true when nothing more can be learnt: the axis separates the triangle and there is
+  // no start to compare with, or it kept its side.
+  bool visit(const Vec3& rawAxis) {
+    const Real axisLength = length(rawAxis);
+    if (!(axisLength > Real(1e-12))) return false;
+    const Vec3 axis = rawAxis / axisLength;
+    const std::vector<Vec3>& corners = m_piece.mesh.vertices;
+    Real pieceLow = 0;
+    Real pieceHigh = 0;
+    interval(axis, corners.data(), corners.size(), pieceLow, pieceHigh);
+    Real low = 0;
+    Real high = 0;
+    interval(axis, m_end, 3, low, high);
+    const Real alongPlus = pieceHigh - low;   // the move along +axis that clears the piece
+    const Real alongMinus = high - pieceLow;  // the move along -axis that does
+    const bool separated = std::min(alongPlus, alongMinus) <= m_tolerance;
+    m_meets = m_meets && !separated;
+    if (m_start == nullptr) return separated;
+    Real low0 = 0;
+    Real high0 = 0;
+    interval(axis, m_start, 3, low0, high0);
+    // On this side at the start, within rounding of where the last step left a face.
+    if (low0 - pieceHigh >= -kStartSlack) {
+      if (alongPlus <= m_tolerance) m_kept = true;
+      if (alongPlus < m_bestConsistent) {
+        m_bestConsistent = alongPlus;
+        m_consistentDirection = axis;
+      }
+    }
+    if (pieceLow - high0 >= -kStartSlack) {
+      if (alongMinus <= m_tolerance) m_kept = true;
+      if (alongMinus < m_bestConsistent) {
+        m_bestConsistent = alongMinus;
+        m_consistentDirection = -axis;
+      }
+    }
+    if (alongPlus < m_bestAny) {
+      m_bestAny = alongPlus;
+      m_anyDirection = axis;
+    }
+    if (alongMinus < m_bestAny) {
+      m_bestAny = alongMinus;
+      m_anyDirection = -axis;
+    }
+    return m_kept;
+  }
+
+  static constexpr Real kStartSlack = 1e-6;
+  const ToolModel& m_piece;
+  const Vec3* m_end;
+  const Vec3* m_start;
+  Real m_tolerance;
+  bool m_meets = true;
+  bool m_kept = false;
+  Real m_bestConsistent = std::numeric_limits<Real>::max();
+  Real m_bestAny = std::numeric_limits<Real>::max();
+  Vec3 m_consistentDirection;
+  Vec3 m_anyDirection;
+};
 
 // Moves a face by `move` (world) at its centroid: each node by its share of inverse mass, the
 // smallest mass-weighted change that moves the centroid that far (a plain translation when the
@@ -163,8 +201,10 @@ bool moveFace(SeparationPatch& patch, const std::array<Index, 3>& face, const Ve
   for (Index v : face) weights += patch.inverseMasses[v];
   if (!(weights > 0)) return false;
   for (Index v : face) {
-    patch.positions[v] += move * (3 * patch.inverseMasses[v] / weights);
-    patch.moved[v] = 1;
+    if (patch.inverseMasses[v] > 0) {
+      patch.positions[v] += move * (3 * patch.inverseMasses[v] / weights);
+      patch.moved[v] = 2;
+    }
   }
   return true;
 }
@@ -187,37 +227,8 @@ Pose PieceMotion::at(Real t) const {
 }
 
 bool triangleMeetsPiece(const ToolModel& piece, const Vec3& a, const Vec3& b, const Vec3& c, Real tolerance) {
-  const std::vector<Vec3>& corners = piece.mesh.vertices;
-  // Overlap of the two projections on axis (not unit: tolerance is scaled by its length).
-  const auto separatedAlong = [&](const Vec3& axis) {
-    const Real axisLength = length(axis);
-    if (!(axisLength > Real(1e-12))) return false;
-    Real pieceLow = std::numeric_limits<Real>::max();
-    Real pieceHigh = -pieceLow;
-    for (const Vec3& v : corners) {
-      const Real p = dot(axis, v);
-      pieceLow = std::min(pieceLow, p);
-      pieceHigh = std::max(pieceHigh, p);
-    }
-    const Real pa = dot(axis, a);
-    const Real pb = dot(axis, b);
-    const Real pc = dot(axis, c);
-    const Real triangleLow = std::min({pa, pb, pc});
-    const Real triangleHigh = std::max({pa, pb, pc});
-    return std::min(pieceHigh - triangleLow, triangleHigh - pieceLow) <= tolerance * axisLength;
-  };
-  for (const Plane& plane : piece.planes) {
-    if (separatedAlong(plane.normal)) return false;
-  }
-  const Vec3 edges[3] = {b - a, c - b, a - c};
-  if (separatedAlong(cross(edges[0], c - a))) return false;
-  for (const auto& edge : piece.featureEdges) {
-    const Vec3 direction = corners[edge[1]] - corners[edge[0]];
-    for (const Vec3& e : edges) {
-      if (separatedAlong(cross(direction, e))) return false;
-    }
-  }
-  return true;
+  const Vec3 triangle[3] = {a, b, c};
+  return TriangleAxes(piece, triangle, nullptr, tolerance).meets();
 }
 
 SeparationCounts separateFromPiece(const ToolModel& piece, const PieceMotion& motion,
@@ -232,9 +243,35 @@ SeparationCounts separateFromPiece(const ToolModel& piece, const PieceMotion& mo
   for (int k = 0; k <= motion.samples(); ++k) poses[k] = motion.at(Real(k) / Real(motion.samples()));
   const Aabb near = piece.bounds.expanded(clearance);
 
+  // Each round moves the faces, then the nodes, so that when the rounds run out the nodes have
+  // had the last say: a face left pierced is counted, a node is never left carried through.
+  // A vertex is marked 2 while the current round has moved it (the node pass judges only those
+  // after the first round), 1 once it has been moved at all.
   for (int round = 0; round < std::max(1, settings.maxRounds); ++round) {
     bool changed = false;
     counts.rounds = round + 1;
+    for (const std::array<Index, 3>& face : patch.faces) {
+      Vec3 now[3];
+      Vec3 before[3];
+      Aabb reach;
+      for (int k = 0; k < 3; ++k) {
+        now[k] = end.applyInverse(patch.positions[face[k]]);
+        before[k] = start.applyInverse(patch.startPositions[face[k]]);
+        reach.include(now[k]);
+        reach.include(before[k]);
+      }
+      // Where the triangle was, seen from the piece, on the way along the arc.
+      for (int k = 1; k < motion.samples(); ++k) {
+        const Real t = Real(k) / Real(motion.samples());
+        for (Index v : face) reach.include(poses[k].applyInverse(patch.startPositions[v] + (patch.positions[v] - patch.startPositions[v]) * t));
+      }
+      if (!near.overlaps(reach)) continue;
+      const TriangleAxes axes(piece, now, before, 0);
+      const Vec3 move = axes.move(clearance);
+      if (move == Vec3{} || !moveFace(patch, face, end.applyToDirection(move))) continue;
+      ++counts.facesMoved;
+      changed = true;
+    }
     for (Index v = 0; v < vertexCount; ++v) {
       if (!(patch.inverseMasses[v] > 0) || (round > 0 && patch.moved[v] != 2)) continue;
       Vec3 local;
@@ -244,46 +281,12 @@ SeparationCounts separateFromPiece(const ToolModel& piece, const PieceMotion& mo
       const Plane& plane = piece.planes[verdict.plane];
       const Vec3 corrected = local + plane.normal * (clearance - plane.signedDistance(local));
       patch.positions[v] = end.apply(corrected);
-      patch.moved[v] = 1;
+      patch.moved[v] = 2;
       ++counts.nodesMoved;
       changed = true;
     }
-    // Faces whose nodes move in this round are judged again; their nodes are marked 2 so that the
-    // next round judges them, and only them.
     for (Index v = 0; v < vertexCount; ++v) {
       if (patch.moved[v] == 2) patch.moved[v] = 1;
-    }
-    for (const std::array<Index, 3>& face : patch.faces) {
-      const Vec3 a = end.applyInverse(patch.positions[face[0]]);
-      const Vec3 b = end.applyInverse(patch.positions[face[1]]);
-      const Vec3 c = end.applyInverse(patch.positions[face[2]]);
-      if (!near.overlaps(Aabb::fromPoints(componentMin(a, componentMin(b, c)), componentMax(a, componentMax(b, c)))) ||
-          !triangleMeetsPiece(piece, a, b, c, 0)) {
-        continue;
-      }
-      const Vec3 normal = normalizedOrZero(cross(b - a, c - a));
-      Real lowest = 0;
-      Real highest = 0;
-      if (normal == Vec3{} || !heightsOverTriangle(piece, a, b, c, normal, lowest, highest)) continue;
-      // Which side of the face the piece belongs on: where its part over the triangle was at the
-      // start of the step, else where most of that part is now.
-      int side = highest >= -lowest ? 1 : -1;
-      const Vec3 a0 = start.applyInverse(patch.startPositions[face[0]]);
-      const Vec3 b0 = start.applyInverse(patch.startPositions[face[1]]);
-      const Vec3 c0 = start.applyInverse(patch.startPositions[face[2]]);
-      const Vec3 normal0 = normalizedOrZero(cross(b0 - a0, c0 - a0));
-      Real lowest0 = 0;
-      Real highest0 = 0;
-      if (normal0 != Vec3{} && heightsOverTriangle(piece, a0, b0, c0, normal0, lowest0, highest0)) {
-        if (lowest0 >= -clearance && highest0 > clearance) side = 1;
-        if (highest0 <= clearance && lowest0 < -clearance) side = -1;
-      }
-      const Real offset = side > 0 ? lowest - clearance : highest + clearance;
-      if (side * offset >= 0) continue;  // the piece is already on its side
-      if (!moveFace(patch, face, end.applyToDirection(normal * offset))) continue;
-      for (Index v : face) patch.moved[v] = 2;
-      ++counts.facesMoved;
-      changed = true;
     }
     if (!changed) break;
   }
@@ -291,14 +294,12 @@ SeparationCounts separateFromPiece(const ToolModel& piece, const PieceMotion& mo
   // What is left, measured as the judge would: half the clearance forgives rounding.
   const Real tolerance = clearance / 2;
   for (Index v = 0; v < vertexCount; ++v) {
-    if (patch.moved[v] != 0) patch.moved[v] = 1;
     if (outsideDistance(piece.planes, end.applyInverse(patch.positions[v])) < -tolerance) ++counts.nodesInside;
   }
   for (const std::array<Index, 3>& face : patch.faces) {
-    const Vec3 a = end.applyInverse(patch.positions[face[0]]);
-    const Vec3 b = end.applyInverse(patch.positions[face[1]]);
-    const Vec3 c = end.applyInverse(patch.positions[face[2]]);
-    if (triangleMeetsPiece(piece, a, b, c, tolerance)) ++counts.facesPierced;
+    Vec3 now[3];
+    for (int k = 0; k < 3; ++k) now[k] = end.applyInverse(patch.positions[face[k]]);
+    if (TriangleAxes(piece, now, nullptr, tolerance).meets()) ++counts.facesPierced;
   }
   return counts;
 }

@@ -19,18 +19,20 @@
 ///   one face and out by a face turned away from it (it was carried through) goes back in front
 ///   of the face it entered by. The nearest face would send a node that crossed more than half
 ///   the piece's thickness out of the far side.
-/// - A pierced face moves along its own normal, away from the side the piece was on at the start
-///   of the step within the triangle's prism (the piece's part over the triangle lies on one side
-///   of it while the face is not pierced); without that memory, the side where less of the piece
-///   lies. The move is the piece's extent past the triangle within its prism: a needle's tip in a
-///   face's interior moves the face just past the tip, a plate's rim through a coarse face moves
-///   the face past the rim.
-/// - Node moves and face moves alternate (Gauss–Seidel) for at most `maxRounds`; what is still
-///   violated then is counted, never hidden.
+/// - A pierced face moves by the shortest translation that clears the piece along one of the
+///   separating-axis candidates (the piece's face normals, the triangle's normal, the cross
+///   products of their edges), choosing only among the directions on whose side the triangle was
+///   at the start of the step: a needle's tip in a face's interior pushes the face along the axis
+///   it came in by, a rim slicing a coarse face pushes it off the rim, outward, and a plate that went
+///   more than half through a face in one step still pushes it out the side it came from. When the
+///   triangle already met the piece at the start, the shortest translation of all.
+/// - Face moves and node moves alternate (Gauss–Seidel) for at most `maxRounds`, nodes last; what
+///   is still violated then is counted, never hidden.
 
 #include <thintool/tool/ToolModel.h>
 
 #include <array>
+#include <string>
 #include <vector>
 
 namespace thintool {
