@@ -64,15 +64,10 @@ TEST_F(OneFace, AFaceSweptOverTheNeedlesEndIsHeldBeyondIt) {
   EXPECT_TRUE(holdBeyondTheEnd(step(faceAt(0.6), faceAt(0.6), faceAt(0.45))));
 }
 
-// Not yet a test, a known gap (README, Limits, today): detection sweeps a face only over the step,
-// not over the soft solver's own move since detection last left it, as it does for the nodes. With
-// step(faceAt(0.52), faceAt(0.49), faceAt(0.49)) the solver has carried the face 1 cm over the
-// needle's end corners, which pierce it, though none of its nodes entered the needle, and no
-// contact sends it back: holdBeyondTheEnd is false. Giving such a face the side it had before the
-// solver's move, where point-triangle CCD confirms the move carried it over a tool point, makes it
-// true, but in Bullet's float64 build made the needle end inside the ball at 5 m/s and cross a node
-// at 50 m/s, at 1/30 s, in the swept matrix (tried twice, the first time with the needle at 1 m/s
-// failing); the case becomes a test with a response that does not.
+// Detection sweeps a face only over the step, not over the soft solver's own move since detection
+// last left it, as it does for the nodes: a face the solver carries over the needle's end corners,
+// with none of its nodes entering, is caught after the solver, by the last word
+// (tests/response/SeparationTest.cpp, AFaceTheSolverCarriedOverTheNeedlesEndGoesBackBeyondIt).
 
 TEST_F(OneFace, AFaceThatStaysBeyondTheSkinIsLeftAlone) {
   EXPECT_TRUE(step(faceAt(0.60), faceAt(0.55), faceAt(0.55)).empty());

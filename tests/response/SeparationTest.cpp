@@ -119,6 +119,37 @@ TEST(Separation, NeedleTipInAFaceInteriorMovesTheFacePastTheTip) {
                                   0));
 }
 
+TEST(Separation, AFaceTheSolverCarriedOverTheNeedlesEndGoesBackBeyondIt) {
+  const ToolModel piece = needle();
+  // The needle stands still; the soft solver carried a face from 2 cm beyond its end (x = 0.5) to
+  // 1 cm over it: the end's corners pierce the face, none of its nodes entered the needle.
+  Patch p;
+  const auto corner = [](Real x, int k) {
+    const Vec3 offsets[3] = {{0, 0.03, 0}, {0, -0.03, 0.03}, {0, -0.03, -0.03}};
+    return Vec3{x, 0, 0} + offsets[k];
+  };
+  Index v[3];
+  for (int k = 0; k < 3; ++k) v[k] = p.node(corner(0.52, k), corner(0.49, k));
+  p.patch.faces.push_back({v[0], v[1], v[2]});
+  const SeparationCounts counts = separateFromPiece(piece, PieceMotion(Pose{}, Pose{}, 0.1), {}, p.patch);
+  EXPECT_EQ(counts.facesPierced, 0u);
+  EXPECT_EQ(counts.nodesMoved, 0u);
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(p.patch.positions[v[k]].x, 0.5 + kClearance, 1e-9);
+}
+
+TEST(Separation, AThinToolThatWentThroughAFaceInOneStepTakesItAlong) {
+  const ToolModel piece = needle();
+  // The needle came down 5 cm through a large face between its nodes: at the end of the step the
+  // face is wholly above it and meets it nowhere, but it was below at the start.
+  Patch p;
+  const Vec3 corners[3] = {{-0.3, 0, -0.3}, {0.3, 0, -0.3}, {0, 0, 0.3}};
+  Index v[3];
+  for (int k = 0; k < 3; ++k) v[k] = p.node(corners[k], corners[k]);
+  p.patch.faces.push_back({v[0], v[2], v[1]});
+  separateFromPiece(piece, PieceMotion(at({0, 0.03, 0}), at({0, -0.02, 0}), 0.1), {}, p.patch);
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(p.patch.positions[v[k]].y, -0.021 - kClearance, 1e-9);
+}
+
 TEST(Separation, FaceSideComesFromTheStartOfTheStep) {
   const ToolModel piece = plate();
   // A large face under the plate, which came down through it by 15 mm in one step: most of the
