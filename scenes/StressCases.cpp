@@ -275,8 +275,9 @@ void addMotionCases(std::vector<StressCase>& cases) {
     return btTransform(pressed.getRotation(), pressed.getOrigin() + btVector3(10, 0, 0));
   };
   cases.push_back(away);
-  // More than a quarter turn in a step is taken as a jump (Tool::resetMotion), not swept: the
-  // plate's local sides swap, so the crossing count is the metric's, and only stability is asked.
+  // A half turn in one step is swept, detection along its chord and the last word along its arc;
+  // the two directions of a half turn are the same rotation, so the plate's local sides swap
+  // whichever way the scene meant, and only stability is asked.
   StressCase turn = base("motion", "turned 180° about its long axis in one step, inside", Expectation::Stable);
   turn.jump = [](const btTransform& pressed, SoftBallScene&) {
     return btTransform(btQuaternion(btVector3(0, 0, 1), btScalar(M_PI)) * pressed.getRotation(), pressed.getOrigin());

@@ -37,24 +37,9 @@ void Tool::resetMotion() {
   m_separationJump = true;
 }
 
-namespace {
-
-// A kinematic tool that turns by more than a quarter turn in one step has jumped: no hand turns a
-// tool that fast, and a half turn has no direction to sweep it along (cos θ = (trace(R₀ᵀR₁) - 1)/2,
-// so a quarter turn is a trace of 1).
-bool turnsTooFarToSweep(const Pose& from, const Pose& to) {
-  Real trace = 0;
-  for (int i = 0; i < 3; ++i) {
-    trace += dot(from.rotation.row[i], to.rotation.row[i]);
-  }
-  return trace < 1;
-}
-
-}  // namespace
-
 void Tool::trackMotion() {
   const Pose now = toPose(m_body.getWorldTransform());
-  const bool jumped = m_jumpNext || (m_motionTracked && turnsTooFarToSweep(m_poseNow, now));
+  const bool jumped = m_jumpNext;
   m_poseBefore = m_motionTracked && !jumped ? m_poseNow : now;
   m_poseNow = now;
   m_motionTracked = true;

@@ -142,8 +142,8 @@ class Tool {
   void captureRestShape(const btSoftBody& softBody);
 
   /// Declares that the tool's next move is a jump (re-homing a device, a pose set by hand), not
-  /// a motion: swept detection then does not sweep the space in between for one step. A kinematic
-  /// tool that turns by more than a quarter turn in one step is taken to have jumped, without this.
+  /// a motion: swept detection and the last word then do not sweep the space in between for one
+  /// step. Nothing else is taken for a jump, however far the tool moves or turns in a step.
   void resetMotion();
 
  private:
