@@ -26,17 +26,21 @@ Aabb worldBounds(const Aabb& local, const Pose& pose) {
   return box;
 }
 
-// Everything the piece can reach during the step: its boxes at both ends and, when it turns, the
-// spheres round its centre at both ends, which hold every pose of the arc in between.
+// Everything the piece can reach during the step: its boxes at the arc's samples, grown by how far
+// a point of the piece strays from the straight line between two samples, r·(1 − cos(θ/2)) for a
+// point r from the body's origin and a turn θ between samples.
 Aabb sweptBounds(const Aabb& local, const PieceMotion& motion) {
-  Aabb box = worldBounds(local, motion.start());
-  box.include(worldBounds(local, motion.end()));
-  if (motion.turn() > 0) {
-    const Real radius = length(local.extent()) / 2;
-    box.include(Aabb{motion.start().apply(local.center()), motion.start().apply(local.center())}.expanded(radius));
-    box.include(Aabb{motion.end().apply(local.center()), motion.end().apply(local.center())}.expanded(radius));
+  Aabb box;
+  Real radius = 0;
+  for (int corner = 0; corner < 8; ++corner) {
+    const Vec3 p{(corner & 1) ? local.max.x : local.min.x, (corner & 2) ? local.max.y : local.min.y,
+                 (corner & 4) ? local.max.z : local.min.z};
+    radius = std::max(radius, length(motion.start().apply(p) - motion.bodyStart().translation));
   }
-  return box;
+  for (int k = 0; k <= motion.samples(); ++k) {
+    box.include(worldBounds(local, motion.at(Real(k) / Real(motion.samples()))));
+  }
+  return box.expanded(radius * (1 - std::cos(motion.turn() / (2 * motion.samples()))));
 }
 
 bool ignores(const btSoftBody& softBody, const btCollisionObject& body) {
@@ -49,35 +53,55 @@ SoftBodySolver::SoftBodySolver(CollisionConfiguration& configuration) : m_config
 
 void SoftBodySolver::solveConstraints(btScalar timeStep) {
   btDefaultSoftBodySolver::solveConstraints(timeStep);
+  std::vector<Tool*>& tools = m_active;
+  tools.clear();
   for (Tool* tool : m_configuration.tools()) {
-    separate(*tool);
+    tool->m_lastWord = LastWordDiagnostics{};
+    if (tool->m_options.separation.enabled && isFinite(toPose(tool->body().getWorldTransform()))) {
+      tools.push_back(tool);
+    }
+  }
+  // One piece's moves can push soft features into another (two jaws, two tools): the pieces take
+  // turns until a pass moves nothing, or a pass had a single piece near soft features.
+  for (int pass = 0; pass < kMostPasses; ++pass) {
+    m_piecesNear = 0;
+    bool moved = false;
+    for (Tool* tool : tools) {
+      moved = separate(*tool) || moved;
+    }
+    if (!moved || m_piecesNear <= 1) break;
+  }
+  for (Tool* tool : tools) {
+    tool->m_separatedPose = toPose(tool->body().getWorldTransform());
+    tool->m_hasSeparatedPose = true;
+    tool->m_separationJump = false;
+    tool->m_lastWord.ran = true;
   }
 }
 
-void SoftBodySolver::separate(Tool& tool) {
-  tool.m_lastWord = LastWordDiagnostics{};
+bool SoftBodySolver::separate(Tool& tool) {
+  const auto start = std::chrono::steady_clock::now();
   const SeparationSettings& settings = tool.m_options.separation;
   const Pose now = toPose(tool.body().getWorldTransform());
-  if (!settings.enabled || !isFinite(now)) {
-    return;
-  }
-  const auto start = std::chrono::steady_clock::now();
   const Pose before = tool.m_hasSeparatedPose && !tool.m_separationJump ? tool.m_separatedPose : now;
+  // What is left is what the latest pass left; the moves add up over the passes.
+  SeparationCounts& counts = tool.m_lastWord.counts;
+  counts.nodesInside = 0;
+  counts.facesPierced = 0;
+  bool moved = false;
   for (Index p = 0; p < tool.pieceCount(); ++p) {
-    const PieceMotion motion(before * tool.pieceTransform(p), now * tool.pieceTransform(p), settings.maxTurnPerSample);
+    const PieceMotion motion(before, now, settings.maxTurnPerSample, tool.pieceTransform(p));
     for (int s = 0; s < m_softBodySet.size(); ++s) {
       btSoftBody& softBody = *m_softBodySet[s];
-      if (!ignores(softBody, tool.body())) {
-        tool.m_lastWord.counts.accumulate(separatePiece(tool, tool.piece(p), motion, softBody));
-      }
+      if (ignores(softBody, tool.body())) continue;
+      const SeparationCounts piece = separatePiece(tool, tool.piece(p), motion, softBody);
+      moved = moved || piece.nodesMoved > 0 || piece.facesMoved > 0;
+      counts.accumulate(piece);
     }
   }
-  tool.m_separatedPose = now;
-  tool.m_hasSeparatedPose = true;
-  tool.m_separationJump = false;
-  tool.m_lastWord.ran = true;
-  tool.m_lastWord.microseconds =
+  tool.m_lastWord.microseconds +=
       std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+  return moved;
 }
 
 SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piece, const PieceMotion& motion,
@@ -121,11 +145,15 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
   if (m_patch.vertexCount() == 0) {
     return {};
   }
+  ++m_piecesNear;
 
   const SeparationCounts counts = separateFromPiece(piece, motion, tool.m_options.separation, m_patch);
 
-  // Scatter the moves, with velocities as Bullet's position solve sets them.
-  const btScalar velocityScale = softBody.m_sst.isdt * (1 - softBody.m_cfg.kDP);
+  // Scatter the moves. A moved node's velocity along its move is what the solve gave it, or the
+  // tool's own there, whichever separates faster: a contact without bounce. Taking the move itself
+  // as velocity, as Bullet's position solve would, turns every correction of the solver's overlap
+  // into a kick away from the tool.
+  const Real inverseStep = Real(softBody.m_sst.isdt);
   btRigidBody* dynamicTool = tool.body().isStaticOrKinematicObject() ? nullptr : &tool.body();
   bool movedAny = false;
   for (Index v = 0; v < m_patch.vertexCount(); ++v) {
@@ -138,7 +166,13 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
     const btVector3 moved = toBt(m_patch.positions[v]);
     const btVector3 displacement = moved - node.m_x;
     node.m_x = moved;
-    node.m_v = (node.m_x - node.m_q) * velocityScale;
+    const Vec3& normal = m_patch.directions[v];
+    const Vec3 toolPoint = m_patch.positions[v];
+    const Vec3 toolVelocity = (toolPoint - motion.start().apply(motion.end().applyInverse(toolPoint))) * inverseStep;
+    const Vec3 velocity = toVec3(node.m_v);
+    const Real along = dot(velocity, normal);
+    const Vec3 separated = velocity + normal * (std::max(along, dot(toolVelocity, normal)) - along);
+    if (isFinite(separated)) node.m_v = toBt(separated);
     movedAny = true;
     if (dynamicTool != nullptr && node.m_im > 0) {
       // The node's change of momentum, taken from the tool.

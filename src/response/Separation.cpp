@@ -89,13 +89,16 @@ NodeVerdict judgeNode(const ToolModel& piece, const PieceMotion& motion, const P
 // piece's face normals, the triangle's normal, and the cross products of their edges. With the
 // triangle's place at the start of the step as well (in the piece's frame then), it also says
 // whether the triangle kept its side, that is, whether some axis separates it from the piece on
-// the same side at both ends of the step, and if not, the shortest move that puts it back on a
-// side it had at the start. A face that kept no side went into or through the piece during the
-// step, even if it no longer meets it.
+// the same side at both ends of the step. A face that kept no side went into or through the piece
+// during the step, even if it no longer meets it, and goes back to a side it had at the start:
+// along the axis of such a side that best trades the length of the move against how well it
+// points back the way the triangle came (`back`, its motion relative to the piece reversed),
+// cost / (kAlignmentFloor + cos). The shortest move alone lets two faces that share an edge along
+// a needle push that edge to opposite sides, round after round; the way back agrees for both.
 class TriangleAxes {
  public:
-  TriangleAxes(const ToolModel& piece, const Vec3* end, const Vec3* start, Real tolerance)
-      : m_piece(piece), m_end(end), m_start(start), m_tolerance(tolerance) {
+  TriangleAxes(const ToolModel& piece, const Vec3* end, const Vec3* start, Real tolerance, const Vec3& back = {})
+      : m_piece(piece), m_end(end), m_start(start), m_tolerance(tolerance), m_back(back) {
     const std::vector<Vec3>& corners = m_piece.mesh.vertices;
     for (const Plane& plane : m_piece.planes) {
       if (visit(plane.normal)) return;
@@ -151,44 +154,50 @@ class TriangleAxes {
     const bool separated = std::min(alongPlus, alongMinus) <= m_tolerance;
     m_meets = m_meets && !separated;
     if (m_start == nullptr) return separated;
+
     Real low0 = 0;
     Real high0 = 0;
     interval(axis, m_start, 3, low0, high0);
     // On this side at the start, within rounding of where the last step left a face.
-    if (low0 - pieceHigh >= -kStartSlack) {
-      if (alongPlus <= m_tolerance) m_kept = true;
-      if (alongPlus < m_bestConsistent) {
-        m_bestConsistent = alongPlus;
-        m_consistentDirection = axis;
-      }
-    }
-    if (pieceLow - high0 >= -kStartSlack) {
-      if (alongMinus <= m_tolerance) m_kept = true;
-      if (alongMinus < m_bestConsistent) {
-        m_bestConsistent = alongMinus;
-        m_consistentDirection = -axis;
-      }
-    }
-    if (alongPlus < m_bestAny) {
+    if (low0 - pieceHigh >= -kStartSlack) consider(axis, alongPlus);
+    if (pieceLow - high0 >= -kStartSlack) consider(-axis, alongMinus);
+    // Met the piece at the start too: the side it was nearest to being on then.
+    if (low0 - pieceHigh > m_bestStartGap) {
+      m_bestStartGap = low0 - pieceHigh;
       m_bestAny = alongPlus;
       m_anyDirection = axis;
     }
-    if (alongMinus < m_bestAny) {
+    if (pieceLow - high0 > m_bestStartGap) {
+      m_bestStartGap = pieceLow - high0;
       m_bestAny = alongMinus;
       m_anyDirection = -axis;
     }
     return m_kept;
   }
 
+  void consider(const Vec3& direction, Real along) {
+    if (along <= m_tolerance) m_kept = true;
+    const Real score = along / (kAlignmentFloor + std::max(Real(0), dot(direction, m_back)));
+    if (score < m_bestScore) {
+      m_bestScore = score;
+      m_bestConsistent = along;
+      m_consistentDirection = direction;
+    }
+  }
+
   static constexpr Real kStartSlack = 1e-6;
+  static constexpr Real kAlignmentFloor = Real(0.1);
   const ToolModel& m_piece;
   const Vec3* m_end;
   const Vec3* m_start;
   Real m_tolerance;
+  Vec3 m_back;
   bool m_meets = true;
   bool m_kept = false;
+  Real m_bestScore = std::numeric_limits<Real>::max();
   Real m_bestConsistent = std::numeric_limits<Real>::max();
   Real m_bestAny = std::numeric_limits<Real>::max();
+  Real m_bestStartGap = -std::numeric_limits<Real>::max();
   Vec3 m_consistentDirection;
   Vec3 m_anyDirection;
 };
@@ -200,10 +209,12 @@ bool moveFace(SeparationPatch& patch, const std::array<Index, 3>& face, const Ve
   Real weights = 0;
   for (Index v : face) weights += patch.inverseMasses[v];
   if (!(weights > 0)) return false;
+  const Vec3 direction = normalizedOrZero(move);
   for (Index v : face) {
     if (patch.inverseMasses[v] > 0) {
       patch.positions[v] += move * (3 * patch.inverseMasses[v] / weights);
       patch.moved[v] = 2;
+      patch.directions[v] = direction;
     }
   }
   return true;
@@ -211,8 +222,9 @@ bool moveFace(SeparationPatch& patch, const std::array<Index, 3>& face, const Ve
 
 }  // namespace
 
-PieceMotion::PieceMotion(const Pose& start, const Pose& end, Real maxTurnPerSample) : m_start(start), m_end(end) {
-  axisAngleOf(start.rotation.transposed() * end.rotation, m_axis, m_angle);
+PieceMotion::PieceMotion(const Pose& bodyStart, const Pose& bodyEnd, Real maxTurnPerSample, const Pose& inBody)
+    : m_bodyStart(bodyStart), m_bodyEnd(bodyEnd), m_inBody(inBody), m_start(bodyStart * inBody), m_end(bodyEnd * inBody) {
+  axisAngleOf(bodyStart.rotation.transposed() * bodyEnd.rotation, m_axis, m_angle);
   const Real samples = std::ceil(m_angle / std::max(maxTurnPerSample, Real(1e-6)));
   m_samples = std::clamp(static_cast<int>(samples), 1, kMostSamples);
 }
@@ -220,10 +232,10 @@ PieceMotion::PieceMotion(const Pose& start, const Pose& end, Real maxTurnPerSamp
 Pose PieceMotion::at(Real t) const {
   if (t <= 0) return m_start;
   if (t >= 1) return m_end;
-  Pose pose;
-  pose.rotation = m_start.rotation * rotationAboutAxis(m_axis, m_angle * t);
-  pose.translation = m_start.translation + (m_end.translation - m_start.translation) * t;
-  return pose;
+  Pose body;
+  body.rotation = m_bodyStart.rotation * rotationAboutAxis(m_axis, m_angle * t);
+  body.translation = m_bodyStart.translation + (m_bodyEnd.translation - m_bodyStart.translation) * t;
+  return body * m_inBody;
 }
 
 bool triangleMeetsPiece(const ToolModel& piece, const Vec3& a, const Vec3& b, const Vec3& c, Real tolerance) {
@@ -266,7 +278,8 @@ SeparationCounts separateFromPiece(const ToolModel& piece, const PieceMotion& mo
         for (Index v : face) reach.include(poses[k].applyInverse(patch.startPositions[v] + (patch.positions[v] - patch.startPositions[v]) * t));
       }
       if (!near.overlaps(reach)) continue;
-      const TriangleAxes axes(piece, now, before, 0);
+      const Vec3 back = normalizedOrZero((before[0] + before[1] + before[2]) - (now[0] + now[1] + now[2]));
+      const TriangleAxes axes(piece, now, before, 0, back);
       const Vec3 move = axes.move(clearance);
       if (move == Vec3{} || !moveFace(patch, face, end.applyToDirection(move))) continue;
       ++counts.facesMoved;
@@ -282,6 +295,7 @@ SeparationCounts separateFromPiece(const ToolModel& piece, const PieceMotion& mo
       const Vec3 corrected = local + plane.normal * (clearance - plane.signedDistance(local));
       patch.positions[v] = end.apply(corrected);
       patch.moved[v] = 2;
+      patch.directions[v] = end.applyToDirection(plane.normal);
       ++counts.nodesMoved;
       changed = true;
     }

@@ -43,10 +43,15 @@ class SoftBodySolver : public btDefaultSoftBodySolver {
   void solveConstraints(btScalar timeStep) override;
 
  private:
-  void separate(Tool& tool);
+  // One pass of the tool's pieces over the soft bodies; returns whether it moved anything.
+  bool separate(Tool& tool);
   SeparationCounts separatePiece(Tool& tool, const ToolModel& piece, const PieceMotion& motion, btSoftBody& softBody);
 
+  static constexpr int kMostPasses = 4;
+
   CollisionConfiguration& m_configuration;
+  std::vector<Tool*> m_active;  // tools whose stage runs this step
+  int m_piecesNear = 0;         // (piece, soft body) pairs with soft features near, this pass
   SeparationPatch m_patch;
   std::vector<Index> m_vertexOfNode;  // soft node -> patch vertex, kInvalidIndex when absent
 };

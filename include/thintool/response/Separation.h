@@ -44,7 +44,7 @@ struct SeparationSettings {
   /// float build must not carry it back in.
   Real clearance = 1e-5;
   /// Most alternations of node and face moves in a step (>= 1).
-  int maxRounds = 8;
+  int maxRounds = 32;
   /// Largest turn of the piece between two samples of its arc (radians, > 0).
   Real maxTurnPerSample = Real(5) * kPi / 180;
 };
@@ -56,8 +56,10 @@ struct SeparationPatch {
   std::vector<Real> inverseMasses;   ///< 0: pinned, never moved
   std::vector<std::array<Index, 3>> faces;  ///< patch vertex indices
   std::vector<Index> nodeIds;        ///< the caller's ids, one per vertex
-  /// Output: the stage moved the vertex.
+  /// Output: the stage moved the vertex, and the direction of its last move (world, unit): the
+  /// contact normal the glue needs to make the node's velocity agree with the move.
   std::vector<unsigned char> moved;
+  std::vector<Vec3> directions;
 
   Index vertexCount() const { return static_cast<Index>(positions.size()); }
   Index addVertex(Index id, const Vec3& start, const Vec3& end, Real inverseMass) {
@@ -66,6 +68,7 @@ struct SeparationPatch {
     positions.push_back(end);
     inverseMasses.push_back(inverseMass);
     moved.push_back(0);
+    directions.push_back({});
     return static_cast<Index>(positions.size() - 1);
   }
   void clear() {
@@ -75,6 +78,7 @@ struct SeparationPatch {
     faces.clear();
     nodeIds.clear();
     moved.clear();
+    directions.clear();
   }
 };
 
@@ -95,23 +99,29 @@ struct SeparationCounts {
   }
 };
 
-/// How a piece moves during the step: its pose at the start and at the end, the turn between
-/// them as one rotation about a fixed axis, and how many samples keep each under the settings'
-/// largest turn.
+/// How a piece moves during the step. The body that carries it goes from its pose at the start to
+/// its pose at the end, its origin in a straight line and its turn about one fixed axis; the piece
+/// rides on it at inBody, so a piece off the body's origin (a jaw) swings round that origin as
+/// the body turns. samples() keeps each sample's turn under the settings' largest.
 class PieceMotion {
  public:
-  PieceMotion(const Pose& start, const Pose& end, Real maxTurnPerSample);
-  /// The pose at fraction t of the step: translation linear, rotation about the fixed axis.
+  PieceMotion(const Pose& bodyStart, const Pose& bodyEnd, Real maxTurnPerSample, const Pose& inBody = Pose{});
+  /// The piece's pose at fraction t of the step.
   Pose at(Real t) const;
   int samples() const { return m_samples; }
   const Pose& start() const { return m_start; }
   const Pose& end() const { return m_end; }
   Real turn() const { return m_angle; }
+  /// The body's pose at the start: the piece turns round its origin.
+  const Pose& bodyStart() const { return m_bodyStart; }
 
  private:
-  Pose m_start;
+  Pose m_bodyStart;
+  Pose m_bodyEnd;
+  Pose m_inBody;
+  Pose m_start;  // the piece's
   Pose m_end;
-  Vec3 m_axis{1, 0, 0};  // in the start pose's frame
+  Vec3 m_axis{1, 0, 0};  // in the body's start frame
   Real m_angle = 0;
   int m_samples = 1;
 };
