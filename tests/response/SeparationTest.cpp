@@ -29,10 +29,6 @@ struct Patch {
   }
 };
 
-Real outside(const ToolModel& piece, const Pose& pose, const Vec3& world) {
-  return outsideDistance(piece.planes, pose.applyInverse(world));
-}
-
 TEST(Separation, NodeInsideLeavesThroughTheFaceItEnteredBy) {
   const ToolModel piece = plate();
   Patch p;
