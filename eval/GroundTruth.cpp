@@ -22,6 +22,88 @@ double distanceSquaredToSegment(const Vec3& p, const Vec3& a, const Vec3& b) {
 
 int sideOf(double coordinate) { return coordinate >= 0 ? 1 : -1; }
 
+// A node's passage through a piece's mid-surface between two poses, in the piece's frame: 0 when
+// it stays on one side or passes beside the piece, else its side (±1) before.
+int crossingSide(const SolidDistance& solid, const Pose& poseBefore, const Vec3& nodeBefore, const Pose& poseAfter,
+                 const Vec3& nodeAfter) {
+  const int axis = solid.thinAxis();
+  const Vec3 before = poseBefore.applyInverse(nodeBefore) - solid.centre();
+  const Vec3 after = poseAfter.applyInverse(nodeAfter) - solid.centre();
+  if (sideOf(before[axis]) == sideOf(after[axis])) return 0;
+  const double fraction = before[axis] / (before[axis] - after[axis]);
+  Vec3 onMidSurface = before + (after - before) * fraction;
+  onMidSurface[axis] = 0;
+  if (solid.signedDistance(onMidSurface + solid.centre()) > 0) return 0;  // passed beside the piece
+  return sideOf(before[axis]);
+}
+
+// Unit quaternions, only to interpolate a rotation along its arc: Math.h keeps rotations as
+// matrices, whose linear blend is no rotation.
+struct Quaternion {
+  double w = 1;
+  double x = 0;
+  double y = 0;
+  double z = 0;
+};
+
+// Shepperd's method: from the largest of the four squared components, so that no division is by
+// a small number, whatever the angle (180° included).
+Quaternion quaternionOf(const Mat3& m) {
+  const double m00 = m.row[0].x, m11 = m.row[1].y, m22 = m.row[2].z;
+  const double trace = m00 + m11 + m22;
+  Quaternion q;
+  if (trace >= m00 && trace >= m11 && trace >= m22) {
+    const double s = 2 * std::sqrt(std::max(0.0, 1 + trace));
+    q = {s / 4, (m.row[2].y - m.row[1].z) / s, (m.row[0].z - m.row[2].x) / s, (m.row[1].x - m.row[0].y) / s};
+  } else if (m00 >= m11 && m00 >= m22) {
+    const double s = 2 * std::sqrt(std::max(0.0, 1 + m00 - m11 - m22));
+    q = {(m.row[2].y - m.row[1].z) / s, s / 4, (m.row[0].y + m.row[1].x) / s, (m.row[0].z + m.row[2].x) / s};
+  } else if (m11 >= m22) {
+    const double s = 2 * std::sqrt(std::max(0.0, 1 - m00 + m11 - m22));
+    q = {(m.row[0].z - m.row[2].x) / s, (m.row[0].y + m.row[1].x) / s, s / 4, (m.row[1].z + m.row[2].y) / s};
+  } else {
+    const double s = 2 * std::sqrt(std::max(0.0, 1 - m00 - m11 + m22));
+    q = {(m.row[1].x - m.row[0].y) / s, (m.row[0].z + m.row[2].x) / s, (m.row[1].z + m.row[2].y) / s, s / 4};
+  }
+  const double norm = std::sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
+  return {q.w / norm, q.x / norm, q.y / norm, q.z / norm};
+}
+
+Mat3 matrixOf(const Quaternion& q) {
+  const double w = q.w, x = q.x, y = q.y, z = q.z;
+  Mat3 m;
+  m.row[0] = {1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)};
+  m.row[1] = {2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)};
+  m.row[2] = {2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)};
+  return m;
+}
+
+double quaternionDot(const Quaternion& a, const Quaternion& b) { return a.w * b.w + a.x * b.x + a.y * b.y + a.z * b.z; }
+
+// The angle (radians) of the rotation taking a to b, the shorter way.
+double turnBetween(const Quaternion& a, const Quaternion& b) {
+  return 2 * std::acos(std::min(1.0, std::abs(quaternionDot(a, b))));
+}
+
+// The rotation a fraction s of the way from a to b along the shorter arc.
+Quaternion slerp(const Quaternion& a, Quaternion b, double s) {
+  double cosine = quaternionDot(a, b);
+  if (cosine < 0) {
+    b = {-b.w, -b.x, -b.y, -b.z};
+    cosine = -cosine;
+  }
+  double wa = 1 - s;
+  double wb = s;
+  if (cosine < 0.9999) {  // nearer, the sines vanish and the linear blend is as good
+    const double angle = std::acos(cosine);
+    wa = std::sin((1 - s) * angle) / std::sin(angle);
+    wb = std::sin(s * angle) / std::sin(angle);
+  }
+  Quaternion q{wa * a.w + wb * b.w, wa * a.x + wb * b.x, wa * a.y + wb * b.y, wa * a.z + wb * b.z};
+  const double norm = std::sqrt(quaternionDot(q, q));
+  return {q.w / norm, q.x / norm, q.y / norm, q.z / norm};
+}
+
 }  // namespace
 
 ConvexSolid ConvexSolid::box(const Vec3& h) {
@@ -136,8 +218,10 @@ double SolidDistance::signedDistance(const Vec3& p) const {
   return std::sqrt(nearest);
 }
 
-GroundTruth::GroundTruth(std::vector<GroundTruthPiece> pieces, bool closedSurface)
-    : m_pieces(std::move(pieces)), m_closedSurface(closedSurface) {}
+GroundTruth::GroundTruth(std::vector<GroundTruthPiece> pieces, bool closedSurface, double tolerance)
+    : m_pieces(std::move(pieces)), m_closedSurface(closedSurface), m_tolerance(tolerance) {
+  if (!(tolerance >= 0)) throw Error("ground truth: the piercing tolerance must be 0 m or more");
+}
 
 std::vector<Pose> GroundTruth::piecePoses(const std::vector<Pose>& toolPoses) const {
   std::vector<Pose> poses;
@@ -151,6 +235,7 @@ std::vector<Pose> GroundTruth::piecePoses(const std::vector<Pose>& toolPoses) co
 
 void GroundTruth::start(const std::vector<Pose>& toolPoses, const std::vector<Vec3>& nodes,
                         const std::vector<Triangle>& /*faces*/) {
+  m_previousToolPoses = toolPoses;
   m_previousPoses = piecePoses(toolPoses);
   m_previousNodes = nodes;
   m_crossedPiece.assign(nodes.size(), -1);
@@ -182,28 +267,29 @@ const GroundTruthStep& GroundTruth::update(const std::vector<Pose>& toolPoses, c
   const std::vector<Pose> poses = piecePoses(toolPoses);
   m_step = {};
 
-  for (std::size_t i = 0; i < nodes.size(); ++i) {
-    for (std::size_t k = 0; k < m_pieces.size(); ++k) {
-      const SolidDistance& solid = m_pieces[k].solid;
-      const int axis = solid.thinAxis();
-      const Vec3 before = m_previousPoses[k].applyInverse(m_previousNodes[i]) - solid.centre();
-      const Vec3 after = poses[k].applyInverse(nodes[i]) - solid.centre();
-      if (sideOf(before[axis]) == sideOf(after[axis])) continue;
-      const double fraction = before[axis] / (before[axis] - after[axis]);
-      Vec3 onMidSurface = before + (after - before) * fraction;
-      onMidSurface[axis] = 0;
-      if (solid.signedDistance(onMidSurface + solid.centre()) > 0) continue;  // passed beside the piece
-      if (m_crossedPiece[i] < 0) {
-        ++m_run.crossedNodes;
-        m_crossedPiece[i] = int(k);
-        m_sideBeforeCrossing[i] = static_cast<signed char>(sideOf(before[axis]));
-      }
-      ++m_step.crossings;
-    }
-  }
+  countCrossings(toolPoses, poses, nodes);
 
   for (const Vec3& node : nodes) measurePenetration(node, poses);
   for (const Triangle& f : faces) measurePenetration((nodes[f[0]] + nodes[f[1]] + nodes[f[2]]) / 3.0, poses);
+
+  for (const Triangle& f : faces) {
+    const Vec3& a = nodes[f[0]];
+    const Vec3& b = nodes[f[1]];
+    const Vec3& c = nodes[f[2]];
+    const Vec3 low = componentMin(a, componentMin(b, c));
+    const Vec3 high = componentMax(a, componentMax(b, c));
+    for (std::size_t k = 0; k < m_pieces.size(); ++k) {
+      const SolidDistance& solid = m_pieces[k].solid;
+      // The cheap reject: the face's box against the piece's bounding sphere.
+      const Vec3 centre = poses[k].apply(solid.centre());
+      const Vec3 nearest = componentMax(low, componentMin(high, centre));
+      if (lengthSquared(nearest - centre) > solid.boundingRadius() * solid.boundingRadius()) continue;
+      if (pierces(a, b, c, k, poses[k])) {
+        ++m_step.piercedFaces;
+        break;
+      }
+    }
+  }
 
   if (m_closedSurface) {
     for (std::size_t k = 0; k < m_pieces.size() && !m_step.toolInside; ++k) {
@@ -216,11 +302,94 @@ const GroundTruthStep& GroundTruth::update(const std::vector<Pose>& toolPoses, c
   m_run.toolInsideSteps += m_step.toolInside ? 1 : 0;
   m_run.endsInside = m_step.toolInside;
   m_run.maxPenetration = std::max(m_run.maxPenetration, m_step.maxPenetration);
+  m_run.piercedSteps += m_step.piercedFaces > 0 ? 1 : 0;
+  m_run.maxPiercedFaces = std::max(m_run.maxPiercedFaces, m_step.piercedFaces);
   m_sumSquared += m_step.sumSquaredPenetration;
   m_samples += m_step.penetratingSamples;
+  m_previousToolPoses = toolPoses;
   m_previousPoses = poses;
   m_previousNodes = nodes;
   return m_step;
+}
+
+void GroundTruth::countCrossings(const std::vector<Pose>& toolPoses, const std::vector<Pose>& poses,
+                                 const std::vector<Vec3>& nodes) {
+  std::vector<Pose> arc;  // a turning piece's poses at the sub-intervals' ends
+  for (std::size_t k = 0; k < m_pieces.size(); ++k) {
+    const GroundTruthPiece& piece = m_pieces[k];
+    const Pose& toolBefore = m_previousToolPoses[piece.tool];
+    const Pose& toolAfter = toolPoses[piece.tool];
+    const Quaternion turnBefore = quaternionOf(toolBefore.rotation);
+    const Quaternion turnAfter = quaternionOf(toolAfter.rotation);
+    const int intervals = std::max(1, int(std::ceil(turnBetween(turnBefore, turnAfter) / kMaxTurnPerInterval)));
+
+    if (intervals == 1) {
+      for (std::size_t i = 0; i < nodes.size(); ++i) {
+        const int side = crossingSide(piece.solid, m_previousPoses[k], m_previousNodes[i], poses[k], nodes[i]);
+        if (side == 0) continue;
+        if (m_crossedPiece[i] < 0) {
+          ++m_run.crossedNodes;
+          m_crossedPiece[i] = int(k);
+          m_sideBeforeCrossing[i] = static_cast<signed char>(side);
+        }
+        ++m_step.crossings;
+      }
+      continue;
+    }
+
+    // Along the arc: the tool's pose interpolated, then the piece placed on it, so that a piece
+    // offset from the tool's origin (a jaw) swings round that origin as the body does.
+    arc.assign(std::size_t(intervals) + 1, Pose{});
+    arc.front() = m_previousPoses[k];
+    arc.back() = poses[k];
+    for (int j = 1; j < intervals; ++j) {
+      const double s = double(j) / intervals;
+      Pose tool;
+      tool.rotation = matrixOf(slerp(turnBefore, turnAfter, s));
+      tool.translation = toolBefore.translation + (toolAfter.translation - toolBefore.translation) * s;
+      arc[std::size_t(j)] = tool * piece.inTool;
+    }
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+      const Vec3 motion = nodes[i] - m_previousNodes[i];
+      for (int j = 0; j < intervals; ++j) {
+        const Vec3 from = j == 0 ? m_previousNodes[i] : m_previousNodes[i] + motion * (double(j) / intervals);
+        const Vec3 to = j + 1 == intervals ? nodes[i] : m_previousNodes[i] + motion * (double(j + 1) / intervals);
+        const int side = crossingSide(piece.solid, arc[std::size_t(j)], from, arc[std::size_t(j) + 1], to);
+        if (side == 0) continue;
+        if (m_crossedPiece[i] < 0) {
+          ++m_run.crossedNodes;
+          m_crossedPiece[i] = int(k);
+          m_sideBeforeCrossing[i] = static_cast<signed char>(side);
+        }
+        ++m_step.crossings;  // once a step, however often the arc passes the node
+        break;
+      }
+    }
+  }
+}
+
+// Sutherland–Hodgman: the triangle clipped by each face plane moved inward by the tolerance. What
+// remains lies deeper than the tolerance inside the piece; nothing remains when no point of the
+// triangle does.
+bool GroundTruth::pierces(const Vec3& a, const Vec3& b, const Vec3& c, std::size_t piece, const Pose& pose) {
+  const SolidDistance& solid = m_pieces[piece].solid;
+  m_clipped = {pose.applyInverse(a), pose.applyInverse(b), pose.applyInverse(c)};
+  const std::vector<Vec3>& normals = solid.faceNormals();
+  const std::vector<double>& offsets = solid.faceOffsets();
+  for (std::size_t f = 0; f < normals.size() && !m_clipped.empty(); ++f) {
+    const double limit = offsets[f] - m_tolerance;
+    m_clipScratch.clear();
+    for (std::size_t v = 0; v < m_clipped.size(); ++v) {
+      const Vec3& p = m_clipped[v];
+      const Vec3& q = m_clipped[(v + 1) % m_clipped.size()];
+      const double dp = dot(normals[f], p) - limit;
+      const double dq = dot(normals[f], q) - limit;
+      if (dp <= 0) m_clipScratch.push_back(p);
+      if ((dp < 0 && dq > 0) || (dp > 0 && dq < 0)) m_clipScratch.push_back(p + (q - p) * (dp / (dp - dq)));
+    }
+    std::swap(m_clipped, m_clipScratch);
+  }
+  return !m_clipped.empty();
 }
 
 GroundTruthRun GroundTruth::run() const {

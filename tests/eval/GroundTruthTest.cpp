@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: Zlib
 // Copyright (c) 2026 The ThinTool developers
 //
-// The evaluation suite's ground truth: exact distances to convex pieces, the winding number, and
-// crossings counted only for nodes that pass through a piece.
+// The evaluation suite's ground truth: exact distances to convex pieces, the winding number,
+// crossings counted only for nodes that pass through a piece (along a turning piece's arc), and
+// faces that pierce a piece.
 
 #include <GroundTruth.h>
 
@@ -142,6 +143,114 @@ TEST(GroundTruth, CompoundPiecesAreMeasuredInTheirOwnFrames) {
   GroundTruth truth(std::move(pieces), false);
   truth.start({at(0, 1, 0)}, {{0, 0.5, 0}, {0.3, 0.5, 0}}, {});
   EXPECT_EQ(truth.update({at(0, 0, 0)}, {{0, 0.5, 0}, {0.3, 0.5, 0}}, {}).crossings, 1);
+}
+
+// Piercing: a soft triangle reaching deeper than the tolerance into a piece, whether or not any
+// of its corners or its centroid is inside.
+
+GroundTruth needleTruth() {
+  std::vector<GroundTruthPiece> pieces;
+  pieces.push_back({SolidDistance(ConvexSolid::box({0.5, 0.001, 0.001})), Pose{}, 0});  // a 2 mm bar along x
+  return GroundTruth(std::move(pieces), false);
+}
+
+TEST(GroundTruth, ANeedleTipThroughALargeTriangleCountsAsPierced) {
+  GroundTruth truth = needleTruth();
+  // A triangle 2 m across in the plane x = 0.45, round the needle's tip (which reaches x = 0.5):
+  // every corner and the centroid far outside the bar.
+  const std::vector<Vec3> nodes{{0.45, -1, -1}, {0.45, 1, -1}, {0.45, 0, 1}};
+  truth.start({Pose{}}, nodes, {{0, 1, 2}});
+  const GroundTruthStep& step = truth.update({Pose{}}, nodes, {{0, 1, 2}});
+  EXPECT_EQ(step.piercedFaces, 1);
+  EXPECT_EQ(step.maxPenetration, 0);  // no sample shows it
+  const GroundTruthRun run = truth.run();
+  EXPECT_EQ(run.piercedSteps, 1);
+  EXPECT_EQ(run.maxPiercedFaces, 1);
+}
+
+TEST(GroundTruth, ATriangleEdgeSlicingTheSolidCountsAsPierced) {
+  GroundTruth truth = plateTruth();  // 0.8 x 0.02 x 0.8 m
+  // A narrow triangle standing across the plate: its long edge passes through the plate's
+  // thickness at x = 0.1, its corners 0.5 m above and below.
+  const std::vector<Vec3> nodes{{0.1, 0.5, 0}, {0.1, -0.5, 0}, {0.1, 0.5, 0.01}};
+  truth.start({Pose{}}, nodes, {{0, 1, 2}});
+  EXPECT_EQ(truth.update({Pose{}}, nodes, {{0, 1, 2}}).piercedFaces, 1);
+}
+
+TEST(GroundTruth, ATriangleTouchingWithinTheToleranceIsNotPierced) {
+  GroundTruth truth = plateTruth();
+  // Lying on the plate's top face (y = 0.01), 0.05 mm into it, half the 0.1 mm tolerance; and a
+  // second one crossing the plate's corner by as little.
+  const double sink = 0.5 * GroundTruth::kDefaultTolerance;
+  const std::vector<Vec3> nodes{{-0.2, 0.01 - sink, -0.2}, {0.2, 0.01 - sink, -0.2}, {0, 0.01 - sink, 0.2},
+                                {0.4 - sink, 0.5, 0.4 - sink}, {0.4 - sink, -0.5, 0.4 - sink}, {0.9, 0, 0.9}};
+  const std::vector<Triangle> faces{{0, 1, 2}, {3, 4, 5}};
+  truth.start({Pose{}}, nodes, faces);
+  EXPECT_EQ(truth.update({Pose{}}, nodes, faces).piercedFaces, 0);
+  // Three times the tolerance deep, the lying one is pierced.
+  std::vector<Vec3> deeper = nodes;
+  for (int i = 0; i < 3; ++i) deeper[std::size_t(i)].y = 0.01 - 3 * GroundTruth::kDefaultTolerance;
+  EXPECT_EQ(truth.update({Pose{}}, deeper, faces).piercedFaces, 1);
+}
+
+TEST(GroundTruth, TheToleranceIsAParameter) {
+  std::vector<GroundTruthPiece> pieces;
+  pieces.push_back({SolidDistance(ConvexSolid::box(kPlateHalf)), Pose{}, 0});
+  GroundTruth truth(std::move(pieces), false, 0.005);
+  const std::vector<Vec3> nodes{{-0.2, 0.008, -0.2}, {0.2, 0.008, -0.2}, {0, 0.008, 0.2}};  // 2 mm deep
+  truth.start({Pose{}}, nodes, {{0, 1, 2}});
+  EXPECT_EQ(truth.update({Pose{}}, nodes, {{0, 1, 2}}).piercedFaces, 0);
+}
+
+// Crossings along the tool's arc: the plate (0.4 m half side, thin along y) turns 90° about z in
+// one step. A node at 45° in the xy plane, 0.5 m from the axis, is beyond the plate's reach all
+// the way round, yet the chord between the plate's two frames (in which the node goes from
+// (0.354, 0.354) to (0.354, -0.354)) crosses its mid-plane 0.354 m out, inside the plate. One
+// 0.3 m out is swept by the plate.
+
+Pose turnedAboutZ(double degrees) {
+  Pose pose;
+  pose.rotation = rotationAboutAxis({0, 0, 1}, degrees * kPi / 180);
+  return pose;
+}
+
+TEST(GroundTruth, ANodeTheTurningPlateNeverReachesIsNotCrossed) {
+  const double r = 0.5 / std::sqrt(2.0);
+  const Vec3 node{r, r, 0};
+  // The chord alone, as the test was before arcs: the same frames seen as one straight step.
+  const SolidDistance plate(ConvexSolid::box(kPlateHalf));
+  const Vec3 before = turnedAboutZ(0).applyInverse(node);
+  const Vec3 after = turnedAboutZ(90).applyInverse(node);
+  ASSERT_GT(before.y, 0);
+  ASSERT_LT(after.y, 0);
+  Vec3 onChord = before + (after - before) * (before.y / (before.y - after.y));
+  onChord.y = 0;
+  ASSERT_LT(plate.signedDistance(onChord), 0);  // the chord test would count it
+
+  GroundTruth truth = plateTruth();
+  truth.start({turnedAboutZ(0)}, {node}, {});
+  EXPECT_EQ(truth.update({turnedAboutZ(90)}, {node}, {}).crossings, 0);
+  EXPECT_EQ(truth.run().crossedNodes, 0);
+}
+
+TEST(GroundTruth, ANodeTheTurningPlateSweepsIsCrossed) {
+  const double r = 0.3 / std::sqrt(2.0);
+  GroundTruth truth = plateTruth();
+  truth.start({turnedAboutZ(0)}, {{r, r, 0}}, {});
+  EXPECT_EQ(truth.update({turnedAboutZ(90)}, {{r, r, 0}}, {}).crossings, 1);
+  EXPECT_EQ(truth.run().crossedNodes, 1);
+}
+
+TEST(GroundTruth, AStepWithoutTurningIsOneInterval) {
+  // A node the plate passes while moving straight: found once, as the single-interval test does;
+  // the same with a turn of under 5°, which stays one interval.
+  for (double degrees : {0.0, 4.0}) {
+    GroundTruth truth = plateTruth();
+    truth.start({at(0, 1, 0)}, {{0.1, 0.5, 0.1}}, {});
+    Pose below = turnedAboutZ(degrees);
+    below.translation = {0, 0.2, 0};
+    EXPECT_EQ(truth.update({below}, {{0.1, 0.5, 0.1}}, {}).crossings, 1);
+  }
 }
 
 }  // namespace
