@@ -14,10 +14,18 @@
 #include <BulletSoftBody/btSoftRigidDynamicsWorld.h>
 #include <btBulletDynamicsCommon.h>
 
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
+#include <map>
 #include <memory>
+#include <string>
 
 namespace thintool::eval {
 
@@ -49,7 +57,7 @@ struct World {
   std::unique_ptr<btCollisionDispatcher> dispatcher;
   btDbvtBroadphase broadphase;
   btSequentialImpulseConstraintSolver solver;
-  btDefaultSoftBodySolver softSolver;
+  std::unique_ptr<btSoftBodySolver> softSolver;
   std::unique_ptr<btSoftRigidDynamicsWorld> world;
   btBoxShape groundShape{btVector3(20, 1, 20)};
   btDefaultMotionState groundMotion{btTransform(btQuaternion::getIdentity(), btVector3(0, -1, 0))};
@@ -74,6 +82,107 @@ struct World {
   }
 };
 
+// Runs f with the process's standard output sent to /dev/null: Bullet's CreateFromTetGenData
+// prints its node, link, face and tetrahedron counts there, into the tools' own output.
+template <typename F>
+auto withQuietStdout(F f) {
+  std::fflush(stdout);
+  const int saved = dup(STDOUT_FILENO);
+  const int null = open("/dev/null", O_WRONLY);
+  if (saved >= 0 && null >= 0) dup2(null, STDOUT_FILENO);
+  auto result = f();
+  std::fflush(stdout);
+  if (saved >= 0) {
+    dup2(saved, STDOUT_FILENO);
+    close(saved);
+  }
+  if (null >= 0) close(null);
+  return result;
+}
+
+// A box of tetrahedra, edge soft.sheetSize, soft.tetraCells cubes a side, each cube cut into six
+// tetrahedra round its main diagonal (Kuhn's subdivision: every cube cut the same way, so
+// neighbours share their faces' diagonals). Built through TetGen's .node and .ele text, which
+// CreateFromTetGenData reads with links along the tetrahedra's edges; it ignores faces, so the
+// surface (the faces that belong to one tetrahedron only, wound outward for the pressure) is
+// appended here.
+btSoftBody* makeTetraBox(const SoftBodySpec& soft, btSoftBodyWorldInfo& info) {
+  const int cells = soft.tetraCells;
+  if (cells < 1) throw Error("scene: a tetra box needs at least one cell a side");
+  const int side = cells + 1;
+  auto nodeIndex = [side](int i, int j, int k) { return (k * side + j) * side + i; };
+  std::vector<Vec3> positions;
+  std::string nodeText = std::to_string(side * side * side) + " 3 0 0\n";
+  for (int k = 0; k < side; ++k) {
+    for (int j = 0; j < side; ++j) {
+      for (int i = 0; i < side; ++i) {
+        const Vec3 p = soft.centre + Vec3{i - cells / 2.0, j - cells / 2.0, k - cells / 2.0} * (soft.sheetSize / cells);
+        positions.push_back(p);
+        char line[160];
+        std::snprintf(line, sizeof line, "%d %.9g %.9g %.9g\n", nodeIndex(i, j, k), p.x, p.y, p.z);
+        nodeText += line;
+      }
+    }
+  }
+  std::vector<std::array<int, 4>> tetras;
+  static constexpr int kAxisOrders[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  for (int k = 0; k < cells; ++k) {
+    for (int j = 0; j < cells; ++j) {
+      for (int i = 0; i < cells; ++i) {
+        for (const auto& order : kAxisOrders) {
+          int corner[3] = {i, j, k};
+          std::array<int, 4> tetra{};
+          tetra[0] = nodeIndex(corner[0], corner[1], corner[2]);
+          for (int step = 0; step < 3; ++step) {
+            ++corner[order[step]];
+            tetra[std::size_t(step) + 1] = nodeIndex(corner[0], corner[1], corner[2]);
+          }
+          tetras.push_back(tetra);
+        }
+      }
+    }
+  }
+  std::string eleText = std::to_string(tetras.size()) + " 4 0\n";
+  for (std::size_t t = 0; t < tetras.size(); ++t) {
+    eleText += std::to_string(t) + " " + std::to_string(tetras[t][0]) + " " + std::to_string(tetras[t][1]) + " " +
+               std::to_string(tetras[t][2]) + " " + std::to_string(tetras[t][3]) + "\n";
+  }
+  btSoftBody* body = withQuietStdout([&] {
+    return btSoftBodyHelpers::CreateFromTetGenData(info, eleText.c_str(), nullptr, nodeText.c_str(), true, true, false);
+  });
+
+  // Each tetrahedron's face with the corner opposite it; a face met once is on the surface.
+  struct FaceUse {
+    std::array<int, 3> corners;
+    int opposite;
+    int uses;
+  };
+  std::map<std::array<int, 3>, FaceUse> faces;
+  for (const std::array<int, 4>& t : tetras) {
+    for (int skip = 0; skip < 4; ++skip) {
+      std::array<int, 3> corners{};
+      int n = 0;
+      for (int c = 0; c < 4; ++c) {
+        if (c != skip) corners[std::size_t(n++)] = t[std::size_t(c)];
+      }
+      std::array<int, 3> key = corners;
+      std::sort(key.begin(), key.end());
+      auto [it, inserted] = faces.try_emplace(key, FaceUse{corners, t[std::size_t(skip)], 0});
+      ++it->second.uses;
+    }
+  }
+  for (const auto& [key, face] : faces) {
+    if (face.uses != 1) continue;
+    std::array<int, 3> c = face.corners;
+    const Vec3& a = positions[std::size_t(c[0])];
+    const Vec3 normal = cross(positions[std::size_t(c[1])] - a, positions[std::size_t(c[2])] - a);
+    if (dot(normal, positions[std::size_t(face.opposite)] - a) > 0) std::swap(c[1], c[2]);
+    body->appendFace(c[0], c[1], c[2]);
+    for (int e = 0; e < 3; ++e) body->appendLink(c[std::size_t(e)], c[std::size_t((e + 1) % 3)], nullptr, true);
+  }
+  return body;
+}
+
 btSoftBody* makeSoftBody(const SceneSpec& scene, btSoftBodyWorldInfo& info) {
   const SoftBodySpec& soft = scene.soft;
   switch (soft.mesh) {
@@ -93,6 +202,8 @@ btSoftBody* makeSoftBody(const SceneSpec& scene, btSoftBodyWorldInfo& info) {
       return btSoftBodyHelpers::CreateFromTriMesh(info, coordinates.data(), indices.data(),
                                                   int(soft.objMesh.triangles.size()));
     }
+    case SoftBodySpec::Mesh::Tetra:
+      return makeTetraBox(soft, info);
     case SoftBodySpec::Mesh::Sheet:
       break;
   }
@@ -131,7 +242,30 @@ ToolOptions optionsFor(const SceneSpec& scene, const ToolSpec& tool) {
   options.name = tool.name;
   options.force.enabled = scene.force;
   options.response.friction.enabled = scene.friction;
+  options.separation.enabled = scene.lastWord;
   return options;
+}
+
+// The angle (radians) of the rotation from a to b.
+double turnAngle(const Mat3& a, const Mat3& b) {
+  const double trace = dot(a.row[0], b.row[0]) + dot(a.row[1], b.row[1]) + dot(a.row[2], b.row[2]);
+  return std::acos(std::clamp((trace - 1) / 2, -1.0, 1.0));
+}
+
+// A coordinate planned against a box (centre, half extent) moved onto another: stretched inside
+// it, shifted outside it (TrajectorySpec::plannedBodyBox).
+double mapOntoBox(double value, double plannedCentre, double plannedHalf, double centre, double half) {
+  const double offset = value - plannedCentre;
+  if (plannedHalf > 0 && std::abs(offset) <= plannedHalf) return centre + offset * (half / plannedHalf);
+  return centre + offset + (offset < 0 ? -1 : 1) * (half - plannedHalf);
+}
+
+// The velocity a dynamic tool is launched with: its trajectory's first segment's.
+Vec3 launchVelocity(const TrajectorySpec& trajectory) {
+  if (trajectory.kind == TrajectorySpec::Kind::ConstantVelocity) return trajectory.direction * trajectory.speed;
+  const std::vector<TrajectorySpec::Waypoint>& points = trajectory.waypoints;
+  if (points.size() < 2 || !(points[1].time > points[0].time)) return {};
+  return (points[1].position - points[0].position) / (points[1].time - points[0].time);
 }
 
 std::vector<Vec3> nodesOf(const btSoftBody& soft) {
@@ -152,12 +286,15 @@ RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
   World w;
   if (stock) {
     w.configuration = std::make_unique<btSoftBodyRigidBodyCollisionConfiguration>();
+    w.softSolver = std::make_unique<btDefaultSoftBodySolver>();
   } else {
-    w.configuration = std::make_unique<CollisionConfiguration>();
+    auto configuration = std::make_unique<CollisionConfiguration>();
+    w.softSolver = std::make_unique<SoftBodySolver>(*configuration);
+    w.configuration = std::move(configuration);
   }
   w.dispatcher = std::make_unique<btCollisionDispatcher>(w.configuration.get());
   w.world = std::make_unique<btSoftRigidDynamicsWorld>(w.dispatcher.get(), &w.broadphase, &w.solver,
-                                                       w.configuration.get(), &w.softSolver);
+                                                       w.configuration.get(), w.softSolver.get());
   btSoftRigidDynamicsWorld& world = *w.world;
   world.setGravity(toBt(scene.gravity));
   btSoftBodyWorldInfo& info = world.getWorldInfo();
@@ -176,26 +313,38 @@ RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
   soft.m_cfg.kDF = btScalar(scene.soft.friction);
   soft.m_cfg.kPR = btScalar(scene.soft.pressure);
   soft.m_cfg.kKHR = btScalar(variant.kKHR);
-  soft.m_cfg.piterations = variant.positionIterations;
+  soft.m_cfg.piterations = scene.soft.positionIterations.value_or(variant.positionIterations);
   soft.m_cfg.kDP = btScalar(1 - std::pow(1 - scene.soft.damping, 60 * substep));
   soft.setTotalMass(btScalar(scene.soft.mass));
-  soft.getCollisionShape()->setMargin(btScalar(variant.margin));
+  const double softMargin = scene.soft.margin.value_or(variant.margin);
+  soft.getCollisionShape()->setMargin(btScalar(softMargin));
   world.addSoftBody(w.soft);
 
   std::vector<GroundTruthPiece> pieces;
+  std::vector<double> toolReach;  // m, the farthest corner of each tool's pieces from its origin
   for (std::size_t t = 0; t < scene.tools.size(); ++t) {
     const ToolSpec& tool = scene.tools[t];
+    const bool dynamic = tool.mass > 0;
     Pose parked = poseAt(tool.trajectory, 0);
     parked.translation.y += kParkedAbove;
     w.motions.push_back(std::make_unique<btDefaultMotionState>(toTransform(parked)));
-    auto body = std::make_unique<btRigidBody>(
-        btRigidBody::btRigidBodyConstructionInfo(0, w.motions.back().get(), makeToolShape(tool, w)));
-    body->setCollisionFlags(body->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
+    btCollisionShape* shape = makeToolShape(tool, w);
+    btVector3 inertia(0, 0, 0);
+    if (dynamic) shape->calculateLocalInertia(btScalar(tool.mass), inertia);
+    auto body = std::make_unique<btRigidBody>(btRigidBody::btRigidBodyConstructionInfo(
+        btScalar(dynamic ? tool.mass : 0), w.motions.back().get(), shape, inertia));
+    if (!dynamic) body->setCollisionFlags(body->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
     body->setActivationState(DISABLE_DEACTIVATION);
     world.addRigidBody(body.get());
+    if (dynamic) body->setGravity(btVector3(0, 0, 0));  // addRigidBody gave it the world's
     w.tools.push_back(std::move(body));
     w.thinTools.push_back(stock ? nullptr : &addTool(world, *w.tools.back(), optionsFor(scene, tool)));
-    for (const ToolPieceSpec& piece : tool.pieces) pieces.push_back({SolidDistance(solidOf(piece)), piece.offset, int(t)});
+    double reach = 0;
+    for (const ToolPieceSpec& piece : tool.pieces) {
+      pieces.push_back({SolidDistance(solidOf(piece)), piece.offset, int(t)});
+      for (const Vec3& v : solidOf(piece).vertices) reach = std::max(reach, length(piece.offset.apply(v)));
+    }
+    toolReach.push_back(reach);
   }
 
   const btScalar dt = btScalar(scene.timeStep);
@@ -212,6 +361,12 @@ RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
     softBottom = std::min(softBottom, double(soft.m_nodes[i].m_x.y()));
     softTop = std::max(softTop, double(soft.m_nodes[i].m_x.y()));
   }
+  Vec3 softLow = Vec3{1, 1, 1} * std::numeric_limits<double>::max();
+  Vec3 softHigh = -softLow;
+  for (const Vec3& node : nodesOf(soft)) {
+    softLow = componentMin(softLow, node);
+    softHigh = componentMax(softHigh, node);
+  }
   if (options.settled) {
     options.settled(softBottom, softTop);
   }
@@ -226,7 +381,18 @@ RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
       for (const ToolPieceSpec& piece : tool.pieces) {
         for (const Vec3& v : solidOf(piece).vertices) lowest = std::min(lowest, start.apply(piece.offset.apply(v)).y);
       }
-      trajectory.start.y += softTop + variant.margin + *trajectory.startClearance - lowest;
+      trajectory.start.y += softTop + softMargin + *trajectory.startClearance - lowest;
+    }
+    if (trajectory.plannedBodyBox) {
+      const Vec3& plannedLow = (*trajectory.plannedBodyBox)[0];
+      const Vec3& plannedHigh = (*trajectory.plannedBodyBox)[1];
+      for (TrajectorySpec::Waypoint& point : trajectory.waypoints) {
+        for (int axis = 0; axis < 3; ++axis) {
+          point.position[axis] = mapOntoBox(point.position[axis], (plannedLow[axis] + plannedHigh[axis]) / 2,
+                                            (plannedHigh[axis] - plannedLow[axis]) / 2,
+                                            (softLow[axis] + softHigh[axis]) / 2, (softHigh[axis] - softLow[axis]) / 2);
+        }
+      }
     }
     trajectories.push_back(trajectory);
   }
@@ -236,6 +402,17 @@ RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
   for (std::size_t t = 0; t < scene.tools.size(); ++t) {
     const Pose start = poseAt(trajectories[t], 0);
     w.motions[t]->setWorldTransform(toTransform(start));
+    if (scene.tools[t].mass > 0) {
+      // A dynamic body is placed by hand and launched; from here on it moves by itself.
+      btRigidBody& body = *w.tools[t];
+      body.setWorldTransform(toTransform(start));
+      body.setInterpolationWorldTransform(toTransform(start));
+      body.setLinearVelocity(toBt(launchVelocity(trajectories[t])));
+      body.setAngularVelocity(btVector3(0, 0, 0));
+      body.setInterpolationLinearVelocity(body.getLinearVelocity());
+      body.setInterpolationAngularVelocity(btVector3(0, 0, 0));
+      body.clearForces();
+    }
     if (w.thinTools[t] != nullptr) w.thinTools[t]->resetMotion();
     toolPoses.push_back(start);
   }
@@ -251,14 +428,21 @@ RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
 
   const std::vector<Triangle> faces = scenes::faceIndices(soft);
   GroundTruth truth(std::move(pieces), scene.soft.mesh != SoftBodySpec::Mesh::Sheet);
-  truth.start(toolPoses, nodesOf(soft), faces);
+  // The dynamic tools have moved in the step above: the ground truth starts from where they are.
+  for (std::size_t t = 0; t < scene.tools.size(); ++t) {
+    if (scene.tools[t].mass > 0) toolPoses[t] = toPose(w.tools[t]->getWorldTransform());
+  }
+  std::vector<Vec3> previousNodes = nodesOf(soft);
+  truth.start(toolPoses, previousNodes, faces);
 
   const int steps = std::max(1, int(std::lround(scene.duration / scene.timeStep)));
   double wall = 0;
   double toolTime = 0;
   for (int i = 1; i <= steps; ++i) {
     const double time = i * scene.timeStep;
+    const std::vector<Pose> posesBefore = toolPoses;
     for (std::size_t t = 0; t < scene.tools.size(); ++t) {
+      if (scene.tools[t].mass > 0) continue;  // dynamic: moves by itself
       toolPoses[t] = poseAt(trajectories[t], time);
       w.motions[t]->setWorldTransform(toTransform(toolPoses[t]));
     }
@@ -274,11 +458,23 @@ RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
     const std::vector<Vec3> nodes = nodesOf(soft);
     for (const Vec3& node : nodes) result.finite = result.finite && isFinite(node);
     if (!result.finite) break;
-    for (std::size_t t = 0; t < scene.tools.size(); ++t) toolPoses[t] = toPose(w.tools[t]->getWorldTransform());
+    for (std::size_t t = 0; t < scene.tools.size(); ++t) {
+      toolPoses[t] = toPose(w.tools[t]->getWorldTransform());
+      const double speed = (length(toolPoses[t].translation - posesBefore[t].translation) +
+                            turnAngle(posesBefore[t].rotation, toolPoses[t].rotation) * toolReach[t]) /
+                           scene.timeStep;
+      result.peakToolSpeed = std::max(result.peakToolSpeed, speed);
+    }
+    for (std::size_t n = 0; n < nodes.size(); ++n) {
+      sample.nodeSpeed = std::max(sample.nodeSpeed, length(nodes[n] - previousNodes[n]) / scene.timeStep);
+    }
+    result.peakNodeSpeed = std::max(result.peakNodeSpeed, sample.nodeSpeed);
+    previousNodes = nodes;
     const GroundTruthStep& step = truth.update(toolPoses, nodes, faces);
     sample.crossings = step.crossings;
     sample.toolInside = step.toolInside;
     sample.maxPenetration = step.maxPenetration;
+    sample.piercedFaces = step.piercedFaces;
     wall += sample.stepMicroseconds;
     toolTime += sample.toolMicroseconds;
     result.peakForce = std::max(result.peakForce, length(sample.force));

@@ -21,6 +21,8 @@ struct StepSample {
   int crossings = 0;
   bool toolInside = false;
   double maxPenetration = 0;     ///< m
+  int piercedFaces = 0;          ///< soft faces deeper than the ground truth's tolerance into a tool
+  double nodeSpeed = 0;          ///< m/s, the fastest soft node this step
   double stepMicroseconds = 0;   ///< stepSimulation's wall time
   double toolMicroseconds = 0;   ///< ThinTool's detection and response (0 for stock)
   Vec3 force;                    ///< N, the tissue's force on the tools (ThinTool with force on)
@@ -37,6 +39,12 @@ struct RunResult {
   double microsecondsPerStep = 0;
   double toolMicrosecondsPerStep = 0;
   double peakForce = 0;          ///< N, largest |force| of a step
+  /// m/s, the fastest soft node over the measured steps: its displacement in a step over the step.
+  double peakNodeSpeed = 0;
+  /// m/s, the fastest point of any tool over the measured steps: |v| + |ω|·reach, v and ω from the
+  /// body's pose before and after the step (kinematic or dynamic alike), reach the farthest corner
+  /// of its pieces from the body's origin.
+  double peakToolSpeed = 0;
   bool finite = true;            ///< false when a soft node became non-finite (the run stops there)
   std::vector<StepSample> samples;
 };

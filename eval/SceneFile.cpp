@@ -348,9 +348,10 @@ SceneSpec parseScene(const std::string& text, const std::string& sourceName, con
     }
   }
   if (const std::optional<JsonField> options = scene.find("thintool")) {
-    options->allowOnly({"force", "friction"});
+    options->allowOnly({"force", "friction", "last_word"});
     spec.force = options->boolean("force", spec.force);
     spec.friction = options->boolean("friction", spec.friction);
+    spec.lastWord = options->boolean("last_word", spec.lastWord);
   }
   if (spec.duration == 0) {
     double end = 0;

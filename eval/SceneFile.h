@@ -34,7 +34,7 @@ const char* algorithmKey(AlgorithmKind kind);
 bool isStock(AlgorithmKind kind);
 
 struct SoftBodySpec {
-  enum class Mesh { Ellipsoid, Obj, Sheet };
+  enum class Mesh { Ellipsoid, Obj, Sheet, Tetra };
   Mesh mesh = Mesh::Ellipsoid;
   // Ellipsoid: Bullet's CreateEllipsoid at `resolution` (63 gives the paper's 128 faces). Its hull
   // drops points from res 255 on and stops near 2,400 faces; exactHull keeps every point as a
@@ -48,14 +48,23 @@ struct SoftBodySpec {
   double scale = 1;
   TriangleMesh objMesh;     ///< read when the scene is loaded, unscaled
   // Sheet: a square patch in the xz plane, nodesPerSide² nodes, pinned at its four corners.
-  double sheetSize = 1;     ///< m, side
+  double sheetSize = 1;     ///< m, side (also the tetra box's edge)
   int nodesPerSide = 17;
+  // Tetra: a closed box of tetrahedra, edge sheetSize, resting where centre puts it: tetraCells
+  // cubes a side, six tetrahedra each, built by btSoftBodyHelpers::CreateFromTetGenData; its
+  // surface is the tetrahedra's outer faces, and its links their edges. Not read from scene files
+  // (the scene generator sets it).
+  int tetraCells = 3;
   // Material (btSoftBody's): a closed body is held up by pressure.
   double mass = 1;             ///< kg, whole body
   double linearStiffness = 0.5;  ///< kLST, 0..1
   double pressure = 50;        ///< kPR, Pa; 0 for a sheet
   double friction = 0.5;       ///< kDF
   double damping = 0.05;       ///< kDP at a 1/60 s step; other steps get the same damping per second
+  // Solver overrides, not read from scene files (the scene generator sets them): when set, they
+  // replace the algorithm variant's values, so every algorithm runs the same soft solver.
+  std::optional<int> positionIterations;  ///< piterations
+  std::optional<double> margin;           ///< m, the soft body's collision margin
 };
 
 /// Rotations are rotation vectors in degrees: the axis scaled by the angle, [0, 0, 30] turning
@@ -94,12 +103,24 @@ struct TrajectorySpec {
   /// between them, held before the first and after the last.
   std::vector<Waypoint> waypoints;
   std::string csvFile;  ///< columns t,x,y,z[,rx,ry,rz] (s, m, degrees), read into waypoints
+  /// Waypoints only, not read from scene files (the scene generator sets it): the soft body's
+  /// bounding box (low, high corners, m) as built, against which the waypoints were planned. Once
+  /// the body has settled, each waypoint coordinate is mapped piecewise linearly so that this box
+  /// lands on the settled body's: stretched inside it, shifted outside it. A start planned clear
+  /// of the body stays as clear, and a target in its middle stays there, however the body sagged,
+  /// spread or swelled.
+  std::optional<std::array<Vec3, 2>> plannedBodyBox;
 };
 
 struct ToolSpec {
   std::string name;
   std::vector<ToolPieceSpec> pieces;  ///< one for a box or hull tool, several for a compound
   TrajectorySpec trajectory;
+  /// kg. 0: kinematic, driven through the trajectory. More: a dynamic body without gravity, put at
+  /// the trajectory's start and launched with its first segment's velocity (direction·speed, or
+  /// the first two waypoints' difference over their times), then free. Not read from scene files
+  /// (the scene generator sets it).
+  double mass = 0;
 };
 
 struct SceneSpec {
@@ -117,6 +138,7 @@ struct SceneSpec {
   AlgorithmKind algorithm = AlgorithmKind::Swept;
   bool force = false;          ///< ThinTool: the Hunt–Crossley force (force error needs it)
   bool friction = false;       ///< ThinTool: Coulomb friction at the tool
+  bool lastWord = true;        ///< ThinTool: the last word after the soft solver (ToolOptions::separation)
 };
 
 /// An override applied to the file's JSON before it is read: path=value, the path in dots and
