@@ -1,0 +1,157 @@
+// SPDX-License-Identifier: Zlib
+// Copyright (c) 2026 The ThinTool developers
+//
+// thintool_generated: runs random scenes from seeds (SceneGenerator.h) and judges each by the
+// ground truth (SceneJudge.h). One line per failing seed, with the command that shows it again,
+// then a summary; exit status 1 when any failed. Run it without arguments for its usage.
+
+#include "Runner.h"
+#include "SceneFile.h"
+#include "SceneGenerator.h"
+#include "SceneJudge.h"
+
+#include <thintool/core/Error.h>
+
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <iostream>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace thintool::eval;
+
+const char* kUsage = R"(usage: thintool_generated [options]
+
+Runs the random scene of each seed and judges it by the ground truth: crossed nodes, the tool
+inside the soft body, pierced faces, penetration deeper than 0.1 mm, non-finite nodes, energy.
+
+  --seeds A..B       seeds A to B, both included (repeatable)
+  --seed S           one seed (repeatable)
+  --seed-file F      seeds from a file, one a line; '#' starts a comment
+  --algorithm X      swept (default), paper, ray-only, stock-A, stock-B or stock-E
+  --verbose          print each scene's description and every step's ground truth
+  --scenes DIR       where vessel.obj is (default: the source tree's eval/scenes)
+)";
+
+#ifndef THINTOOL_EVAL_SCENES
+#define THINTOOL_EVAL_SCENES "eval/scenes"
+#endif
+
+void addSeedRange(const std::string& text, std::vector<std::uint64_t>& seeds) {
+  const std::size_t dots = text.find("..");
+  if (dots == std::string::npos) throw thintool::Error("--seeds '" + text + "': expected A..B, such as 1..300");
+  const std::uint64_t first = parseSeed(text.substr(0, dots));
+  const std::uint64_t last = parseSeed(text.substr(dots + 2));
+  if (last < first) throw thintool::Error("--seeds '" + text + "': the last seed is before the first");
+  for (std::uint64_t s = first; s <= last; ++s) seeds.push_back(s);
+}
+
+AlgorithmKind parseAlgorithm(const std::string& name) {
+  for (AlgorithmKind kind : {AlgorithmKind::Swept, AlgorithmKind::Paper, AlgorithmKind::RayOnly, AlgorithmKind::StockA,
+                             AlgorithmKind::StockB, AlgorithmKind::StockE}) {
+    if (name == algorithmKey(kind)) return kind;
+  }
+  throw thintool::Error("--algorithm '" + name + "': expected swept, paper, ray-only, stock-A, stock-B or stock-E");
+}
+
+void printSteps(const RunResult& run) {
+  std::printf("%6s %9s %9s %7s %12s %7s %12s\n", "step", "t (s)", "crossings", "inside", "depth (mm)", "pierced",
+              "node (m/s)");
+  for (std::size_t i = 0; i < run.samples.size(); ++i) {
+    const StepSample& s = run.samples[i];
+    std::printf("%6zu %9.5f %9d %7s %12.4g %7d %12.4g\n", i + 1, s.time, s.crossings, s.toolInside ? "yes" : "no",
+                s.maxPenetration * 1000, s.piercedFaces, s.nodeSpeed);
+  }
+  std::printf("faces %d, nodes %d, crossed nodes %d, inside steps %d, pierced steps %d, deepest %.4g mm, "
+              "peak node speed %.4g m/s, peak tool speed %.4g m/s\n",
+              run.softFaces, run.softNodes, run.truth.crossedNodes, run.truth.toolInsideSteps, run.truth.piercedSteps,
+              run.truth.maxPenetration * 1000, run.peakNodeSpeed, run.peakToolSpeed);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::uint64_t> seeds;
+  AlgorithmKind algorithm = AlgorithmKind::Swept;
+  bool verbose = false;
+  std::string sceneFolder = THINTOOL_EVAL_SCENES;
+  try {
+    for (int i = 1; i < argc; ++i) {
+      const std::string arg = argv[i];
+      auto value = [&]() -> std::string {
+        if (i + 1 >= argc) throw thintool::Error(arg + " needs a value");
+        return argv[++i];
+      };
+      if (arg == "--seeds") {
+        addSeedRange(value(), seeds);
+      } else if (arg == "--seed") {
+        seeds.push_back(parseSeed(value()));
+      } else if (arg == "--seed-file") {
+        const std::vector<std::uint64_t> fromFile = readSeedFile(value());
+        seeds.insert(seeds.end(), fromFile.begin(), fromFile.end());
+      } else if (arg == "--algorithm") {
+        algorithm = parseAlgorithm(value());
+      } else if (arg == "--verbose") {
+        verbose = true;
+      } else if (arg == "--scenes") {
+        sceneFolder = value();
+      } else if (arg == "--help" || arg == "-h") {
+        std::cout << kUsage;
+        return 0;
+      } else {
+        throw thintool::Error("unknown option '" + arg + "'");
+      }
+    }
+  } catch (const thintool::Error& e) {
+    std::cerr << "thintool_generated: " << e.what() << "\n" << kUsage;
+    return 2;
+  }
+  if (seeds.empty()) {
+    std::cerr << kUsage;
+    return 2;
+  }
+
+  int failed = 0;
+  int crossed = 0, inside = 0, pierced = 0, deep = 0, nonFinite = 0, energy = 0, refused = 0;
+  const auto begin = std::chrono::steady_clock::now();
+  for (std::uint64_t seed : seeds) {
+    Verdict verdict;
+    try {
+      SceneSpec scene = generateScene(seed, sceneFolder);
+      scene.algorithm = algorithm;
+      if (verbose) std::printf("%s\n", describeScene(scene).c_str());
+      RunOptions options;
+      if (verbose) {
+        options.settled = [](double bottom, double top) {
+          std::printf("settled: the soft body spans heights %.4f to %.4f m\n", bottom, top);
+        };
+      }
+      const RunResult run = runScene(scene, options);
+      if (verbose) printSteps(run);
+      verdict = judge(run);
+    } catch (const thintool::Error& e) {
+      verdict = refusedVerdict(e.what());
+    }
+    if (!verdict.failed) continue;
+    ++failed;
+    crossed += verdict.crossed;
+    inside += verdict.inside;
+    pierced += verdict.pierced;
+    deep += verdict.deep;
+    nonFinite += verdict.nonFinite;
+    energy += verdict.energy;
+    refused += verdict.refused;
+    std::printf("seed %llu failed: %s; reproduce: %s --seed %llu --algorithm %s --verbose\n",
+                static_cast<unsigned long long>(seed), joinReasons(verdict).c_str(), argv[0],
+                static_cast<unsigned long long>(seed), algorithmKey(algorithm));
+    std::fflush(stdout);
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+  std::printf("%zu scenes, %d failed (crossed %d, inside %d, pierced %d, deep %d, non-finite %d, energy %d, "
+              "refused %d), %.1f s\n",
+              seeds.size(), failed, crossed, inside, pierced, deep, nonFinite, energy, refused, seconds);
+  return failed > 0 ? 1 : 0;
+}

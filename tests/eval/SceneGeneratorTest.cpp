@@ -1,0 +1,204 @@
+// SPDX-License-Identifier: Zlib
+// Copyright (c) 2026 The ThinTool developers
+//
+// The scene generator: the same seed gives the same scene, and a thousand seeds stay inside the
+// ranges its header documents while reaching every mesh, every tool, kinematic and dynamic.
+
+#include <SceneGenerator.h>
+
+#include <thintool/core/Error.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <set>
+#include <string>
+
+namespace thintool::eval {
+namespace {
+
+using namespace generated;
+
+const std::string kScenes = THINTOOL_EVAL_SCENES;
+
+// Inside [low, high], with room for the rounding of a value computed from a drawn one.
+void expectWithin(double value, double low, double high, const std::string& what, std::uint64_t seed) {
+  const double slack = 1e-9 * std::max(std::abs(low), std::abs(high));
+  EXPECT_TRUE(value >= low - slack && value <= high + slack)
+      << what << " = " << value << " outside [" << low << ", " << high << "] for seed " << seed;
+}
+
+std::string toolKindOf(const ToolSpec& tool) {
+  if (tool.pieces.size() == 2) return "jaws";
+  if (tool.pieces[0].kind == ToolPieceSpec::Kind::Hull) return "blade";
+  const Vec3& h = tool.pieces[0].halfExtents;
+  return h.y == h.z && h.y <= kMaxNeedleWidth / 2 && h.x >= kMinNeedleLength / 2 ? "needle" : "plate";
+}
+
+TEST(SceneGenerator, TheSameSeedGivesTheSameScene) {
+  for (std::uint64_t seed : {1ULL, 2ULL, 77ULL, 123456789ULL, 18446744073709551615ULL}) {
+    const std::string first = describeScene(generateScene(seed, kScenes));
+    EXPECT_EQ(first, describeScene(generateScene(seed, kScenes)));
+    EXPECT_NE(first.find("generated-" + std::to_string(seed) + ":"), std::string::npos) << first;
+  }
+  EXPECT_NE(describeScene(generateScene(1, kScenes)), describeScene(generateScene(2, kScenes)));
+}
+
+TEST(SceneGenerator, AThousandSeedsStayInTheirRangesAndCoverEveryKind) {
+  std::set<SoftBodySpec::Mesh> meshes;
+  std::set<std::string> tools;
+  int dynamic = 0, kinematic = 0, turning = 0, holds = 0, largeEllipsoids = 0;
+  for (std::uint64_t seed = 1; seed <= 1000; ++seed) {
+    const SceneSpec scene = generateScene(seed, kScenes);
+    EXPECT_EQ(scene.algorithm, AlgorithmKind::Swept);
+    EXPECT_EQ(scene.substeps, 1);
+    expectWithin(scene.timeStep, kMinTimeStep, kMaxTimeStep, "dt", seed);
+    expectWithin(scene.settleSeconds, kMinSettleSeconds, kMaxSettleSeconds, "settle", seed);
+    const long steps = std::lround(scene.duration / scene.timeStep);
+    EXPECT_GE(steps, 1);
+    EXPECT_LE(steps, kMaxSteps) << seed;
+    expectWithin(scene.duration, 0, kMaxSeconds, "duration", seed);
+    // The work budget holds unless the body is so large that even the coarsest step and the
+    // fewest measured steps pass it.
+    const double nodes = scene.soft.mesh == SoftBodySpec::Mesh::Ellipsoid ? scene.soft.resolution + 3
+                         : scene.soft.mesh == SoftBodySpec::Mesh::Obj
+                             ? double(scene.soft.objMesh.vertices.size())
+                         : scene.soft.mesh == SoftBodySpec::Mesh::Sheet
+                             ? double(scene.soft.nodesPerSide * scene.soft.nodesPerSide)
+                             : std::pow(scene.soft.tetraCells + 1, 3);
+    const double work = nodes * double(std::lround(scene.settleSeconds / scene.timeStep) + steps);
+    if (work > kWorkBudget * 1.001) {
+      EXPECT_LE(steps, kMinMeasuredSteps) << seed;
+      EXPECT_NEAR(scene.timeStep, kMaxTimeStep, 1e-12) << seed;
+    }
+
+    const SoftBodySpec& soft = scene.soft;
+    meshes.insert(soft.mesh);
+    switch (soft.mesh) {
+      case SoftBodySpec::Mesh::Ellipsoid: {
+        const int faces = 2 * (soft.resolution + 1);
+        expectWithin(faces, kMinEllipsoidFaces, kMaxEllipsoidFaces, "ellipsoid faces", seed);
+        EXPECT_EQ(soft.exactHull, faces > kExactHullFaces) << seed;
+        largeEllipsoids += faces > 8000;
+        for (int axis = 0; axis < 3; ++axis) expectWithin(soft.radius[axis], kMinRadius, kMaxRadius, "radius", seed);
+        EXPECT_EQ(soft.centre.y, soft.radius.y) << seed;  // resting on the ground
+        break;
+      }
+      case SoftBodySpec::Mesh::Obj:
+        EXPECT_EQ(soft.objFile, "vessel.obj");
+        EXPECT_FALSE(soft.objMesh.triangles.empty());
+        expectWithin(soft.scale, kMinVesselScale, kMaxVesselScale, "vessel scale", seed);
+        break;
+      case SoftBodySpec::Mesh::Sheet:
+        expectWithin(soft.nodesPerSide, kMinSheetNodes, kMaxSheetNodes, "sheet nodes", seed);
+        expectWithin(soft.sheetSize, kMinSheetSize, kMaxSheetSize, "sheet size", seed);
+        expectWithin(soft.centre.y, kMinSheetHeight, kMaxSheetHeight, "sheet height", seed);
+        EXPECT_EQ(soft.pressure, 0) << seed;
+        break;
+      case SoftBodySpec::Mesh::Tetra:
+        expectWithin(soft.tetraCells, kMinTetraCells, kMaxTetraCells, "tetra cells", seed);
+        expectWithin(soft.sheetSize, kMinTetraEdge, kMaxTetraEdge, "tetra edge", seed);
+        EXPECT_EQ(soft.pressure, 0) << seed;  // its tetrahedra hold it up
+        break;
+    }
+    expectWithin(soft.linearStiffness, kMinLinearStiffness, kMaxLinearStiffness, "kLST", seed);
+    expectWithin(soft.pressure, 0, kMaxPressure, "kPR", seed);
+    ASSERT_TRUE(soft.positionIterations.has_value());
+    expectWithin(*soft.positionIterations, kMinPositionIterations, kMaxPositionIterations, "piterations", seed);
+    ASSERT_TRUE(soft.margin.has_value());
+    expectWithin(*soft.margin, kMinMargin, kMaxMargin, "margin", seed);
+    expectWithin(soft.mass, kMinSoftMass, kMaxSoftMass, "soft mass", seed);
+    expectWithin(soft.friction, kMinFriction, kMaxFriction, "kDF", seed);
+
+    ASSERT_EQ(scene.tools.size(), 1u);
+    const ToolSpec& tool = scene.tools[0];
+    const std::string kind = toolKindOf(tool);
+    tools.insert(kind);
+    if (kind == "plate" || kind == "jaws") {
+      for (const ToolPieceSpec& piece : tool.pieces) {
+        const double wide = kind == "plate" ? kMaxPlateWidth : kMaxJawWidth;
+        const double narrow = kind == "plate" ? kMinPlateWidth : kMinJawWidth;
+        expectWithin(2 * piece.halfExtents.y, kMinPlateThickness, kMaxPlateThickness, "thickness", seed);
+        expectWithin(2 * piece.halfExtents.x, narrow, wide, "width", seed);
+        expectWithin(2 * piece.halfExtents.z, narrow, wide, "depth", seed);
+      }
+      if (kind == "jaws") {
+        const double gap = tool.pieces[0].offset.translation.y - tool.pieces[1].offset.translation.y -
+                           2 * tool.pieces[0].halfExtents.y;
+        expectWithin(gap, kMinJawGap, kMaxJawGap, "jaw gap", seed);
+        EXPECT_EQ(tool.pieces[0].offset.translation.y, -tool.pieces[1].offset.translation.y) << seed;
+      }
+    } else if (kind == "needle") {
+      expectWithin(2 * tool.pieces[0].halfExtents.y, kMinNeedleWidth, kMaxNeedleWidth, "needle width", seed);
+      expectWithin(2 * tool.pieces[0].halfExtents.x, kMinNeedleLength, kMaxNeedleLength, "needle length", seed);
+    } else {
+      const SolidDistance blade(tool.pieces[0].hull);  // a closed convex solid, or it throws
+      expectWithin(2 * blade.halfExtents().z, kMinBladeLength, kMaxBladeLength, "blade length", seed);
+      expectWithin(2 * blade.halfExtents().y, kMinBladeHeight, kMaxBladeHeight, "blade height", seed);
+      expectWithin(2 * blade.halfExtents().x, kMinBladeThickness, kMaxBladeThickness, "blade thickness", seed);
+    }
+    if (tool.mass > 0) {
+      ++dynamic;
+      expectWithin(tool.mass, kMinToolMass, kMaxToolMass, "tool mass", seed);
+    } else {
+      ++kinematic;
+    }
+
+    const TrajectorySpec& path = tool.trajectory;
+    EXPECT_EQ(path.kind, TrajectorySpec::Kind::Waypoints);
+    EXPECT_TRUE(path.plannedBodyBox.has_value());
+    expectWithin(double(path.waypoints.size()) - 1, kMinSegments, kMaxSegments, "segments", seed);
+    bool turns = false;
+    for (std::size_t i = 1; i < path.waypoints.size(); ++i) {
+      const TrajectorySpec::Waypoint& a = path.waypoints[i - 1];
+      const TrajectorySpec::Waypoint& b = path.waypoints[i];
+      ASSERT_GT(b.time, a.time) << seed;
+      const double stepsInSegment = (b.time - a.time) / scene.timeStep;
+      expectWithin(length(b.position - a.position) / (b.time - a.time), 0, kMaxSpeed, "speed", seed);
+      expectWithin(length(b.rotation - a.rotation) / stepsInSegment, 0, kMaxTurnDegreesPerStep, "turn a step", seed);
+      turns = turns || b.rotation != a.rotation;
+      holds += b.position == a.position && b.rotation == a.rotation;
+    }
+    turning += turns;
+    // The first segment moves, so that a dynamic tool is launched.
+    EXPECT_NE(path.waypoints[0].position, path.waypoints[1].position) << seed;
+  }
+  EXPECT_EQ(meshes.size(), 4u);
+  EXPECT_EQ(tools, (std::set<std::string>{"plate", "needle", "blade", "jaws"}));
+  EXPECT_GT(dynamic, 100);
+  EXPECT_GT(kinematic, 700);
+  EXPECT_GT(turning, 200);
+  EXPECT_GT(1000 - turning, 200);
+  EXPECT_GT(holds, 50);
+  EXPECT_GT(largeEllipsoids, 10);
+  EXPECT_LT(largeEllipsoids, 100);  // rare enough to keep the runs short
+}
+
+TEST(SceneGenerator, SeedFilesSkipCommentsAndNameTheirBadLines) {
+  const std::string path = ::testing::TempDir() + "/seeds.txt";
+  {
+    std::ofstream out(path);
+    out << "# a header\n\n17  # crossed 3 nodes\n  42\n";
+  }
+  EXPECT_EQ(readSeedFile(path), (std::vector<std::uint64_t>{17, 42}));
+  {
+    std::ofstream out(path);
+    out << "17\nseventeen\n";
+  }
+  try {
+    readSeedFile(path);
+    ADD_FAILURE() << "a bad seed was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("seeds.txt:2:"), std::string::npos) << e.what();
+  }
+  std::remove(path.c_str());
+}
+
+TEST(SceneGenerator, TheRegressionFileReads) {
+  EXPECT_NO_THROW(readSeedFile(std::string(THINTOOL_EVAL_GENERATED) + "/regressions.txt"));
+}
+
+}  // namespace
+}  // namespace thintool::eval
