@@ -122,7 +122,9 @@ class TriangleAxes {
   Vec3 move(Real clearance) const {
     if (m_kept) return {};
     if (m_bestConsistent < std::numeric_limits<Real>::max()) return m_consistentDirection * (m_bestConsistent + clearance);
-    return m_meets ? m_anyDirection * (m_bestAny + clearance) : Vec3{};
+    if (!m_meets) return {};
+    if (m_rewind < std::numeric_limits<Real>::max()) return m_back * (m_rewind + clearance);
+    return m_anyDirection * (m_bestAny + clearance);
   }
 
  private:
@@ -161,7 +163,13 @@ class TriangleAxes {
     // On this side at the start, within rounding of where the last step left a face.
     if (low0 - pieceHigh >= -kStartSlack) consider(axis, alongPlus);
     if (pieceLow - high0 >= -kStartSlack) consider(-axis, alongMinus);
-    // Met the piece at the start too: the side it was nearest to being on then.
+    // Met the piece at the start too: back the way it came, as far as it takes (the ray along
+    // `back` leaves the Minkowski difference of piece and triangle at the smallest
+    // along / cos over the axes, its facets' normals being among them) ...
+    const Real towards = dot(axis, m_back);
+    if (towards > kLeastCosine) m_rewind = std::min(m_rewind, alongPlus / towards);
+    if (towards < -kLeastCosine) m_rewind = std::min(m_rewind, alongMinus / -towards);
+    // ... or, without a motion to go back along, to the side it was nearest to being on then.
     if (low0 - pieceHigh > m_bestStartGap) {
       m_bestStartGap = low0 - pieceHigh;
       m_bestAny = alongPlus;
@@ -187,6 +195,7 @@ class TriangleAxes {
 
   static constexpr Real kStartSlack = 1e-6;
   static constexpr Real kAlignmentFloor = Real(0.1);
+  static constexpr Real kLeastCosine = Real(1e-3);
   const ToolModel& m_piece;
   const Vec3* m_end;
   const Vec3* m_start;
@@ -198,6 +207,7 @@ class TriangleAxes {
   Real m_bestConsistent = std::numeric_limits<Real>::max();
   Real m_bestAny = std::numeric_limits<Real>::max();
   Real m_bestStartGap = -std::numeric_limits<Real>::max();
+  Real m_rewind = std::numeric_limits<Real>::max();
   Vec3 m_consistentDirection;
   Vec3 m_anyDirection;
 };
