@@ -350,6 +350,8 @@ void GroundTruth::countCrossings(const std::vector<Pose>& toolPoses, const std::
       arc[std::size_t(j)] = tool * piece.inTool;
     }
     for (std::size_t i = 0; i < nodes.size(); ++i) {
+      // Straight in the piece's frame, it went round: not a crossing, whatever the arc says.
+      if (crossingSide(piece.solid, m_previousPoses[k], m_previousNodes[i], poses[k], nodes[i]) == 0) continue;
       const Vec3 motion = nodes[i] - m_previousNodes[i];
       for (int j = 0; j < intervals; ++j) {
         const Vec3 from = j == 0 ? m_previousNodes[i] : m_previousNodes[i] + motion * (double(j) / intervals);

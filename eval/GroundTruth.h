@@ -14,11 +14,14 @@
 ///   piece's mid-surface (the plane through the piece's centre across its thinnest axis) at a point
 ///   inside the piece. A node pushed round the tool's rim never counts; one that went through does,
 ///   however far it went.
-///   When a piece turns between two steps, the step is split into sub-intervals of at most 5° each
-///   (the tool's pose interpolated along its arc: translation linear, rotation by slerp; the node
-///   linear in the world) and each is tested the same way, so that a node swept by a turning plate
-///   counts and one that only the straight chord between the two poses would pass does not. A step
-///   without rotation is one interval, the test above unchanged.
+///   When a piece turns between two steps, where a node went in between is not known, and two
+///   readings are each wrong for some node: straight in the piece's frame (the test above, the
+///   chord) has a node the turning plate never reached pass through it, and straight in the world
+///   with the piece on its arc (the step split into sub-intervals of at most 5°, the tool's
+///   translation linear and its rotation by slerp, each tested as above) has a node that rode on
+///   the plate's face round the arc lag behind it and pass through it. A node crosses a turning
+///   piece only when both readings say so: no path that either takes went round. A step without
+///   rotation is one interval, the two readings the same, the test above unchanged.
 /// - Tool inside: the centre of a piece lies inside the closed soft surface, by the generalised
 ///   winding number (Jacobson et al. 2013), which, unlike ray parity, has no unlucky directions.
 /// - Pierced face: at the end of a step, a soft triangle reaches deeper than the tolerance into a

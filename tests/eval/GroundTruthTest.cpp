@@ -241,6 +241,16 @@ TEST(GroundTruth, ANodeTheTurningPlateSweepsIsCrossed) {
   EXPECT_EQ(truth.run().crossedNodes, 1);
 }
 
+TEST(GroundTruth, ANodeRidingTheTurningPlatesFaceIsNotCrossed) {
+  // 2 mm over the plate's top, 0.3 m out, at both ends of a step that turns the plate 150°: the
+  // straight line between its two places in the world passes behind the plate on its arc, but in
+  // the plate's frame it never moved.
+  const Vec3 onTop{0.3, kPlateHalf.y + 0.002, 0};
+  GroundTruth truth = plateTruth();
+  truth.start({turnedAboutZ(0)}, {turnedAboutZ(0).apply(onTop)}, {});
+  EXPECT_EQ(truth.update({turnedAboutZ(150)}, {turnedAboutZ(150).apply(onTop)}, {}).crossings, 0);
+}
+
 TEST(GroundTruth, AStepWithoutTurningIsOneInterval) {
   // A node the plate passes while moving straight: found once, as the single-interval test does;
   // the same with a turn of under 5°, which stays one interval.
