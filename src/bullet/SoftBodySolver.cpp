@@ -104,6 +104,43 @@ bool SoftBodySolver::separate(Tool& tool) {
   return moved;
 }
 
+const SoftBodySolver::FaceAdjacency& SoftBodySolver::adjacencyOf(const btSoftBody& softBody) {
+  FaceAdjacency* found = nullptr;
+  for (FaceAdjacency& adjacency : m_adjacency) {
+    if (adjacency.softBody == &softBody) found = &adjacency;
+  }
+  if (found == nullptr) {
+    m_adjacency.emplace_back();
+    found = &m_adjacency.back();
+    found->softBody = &softBody;
+  }
+  FaceAdjacency& adjacency = *found;
+  const auto nodeCount = static_cast<Index>(softBody.m_nodes.size());
+  const auto faceCount = static_cast<Index>(softBody.m_faces.size());
+  if (m_faceInPatch.size() < faceCount) m_faceInPatch.resize(faceCount, 0);
+  if (adjacency.nodeCount == nodeCount && adjacency.faceCount == faceCount) return adjacency;
+  // Built when the body's topology is new to the solver or has changed (refine, cut): never in a
+  // step that only moves nodes.
+  adjacency.nodeCount = nodeCount;
+  adjacency.faceCount = faceCount;
+  adjacency.begin.assign(nodeCount + 1, 0);
+  const btSoftBody::Node* first = nodeCount > 0 ? &softBody.m_nodes[0] : nullptr;
+  for (Index f = 0; f < faceCount; ++f) {
+    for (const btSoftBody::Node* node : softBody.m_faces[static_cast<int>(f)].m_n) {
+      ++adjacency.begin[static_cast<Index>(node - first) + 1];
+    }
+  }
+  for (Index n = 0; n < nodeCount; ++n) adjacency.begin[n + 1] += adjacency.begin[n];
+  adjacency.faces.resize(adjacency.begin[nodeCount]);
+  std::vector<Index> filled(adjacency.begin.begin(), adjacency.begin.end() - 1);
+  for (Index f = 0; f < faceCount; ++f) {
+    for (const btSoftBody::Node* node : softBody.m_faces[static_cast<int>(f)].m_n) {
+      adjacency.faces[filled[static_cast<Index>(node - first)]++] = f;
+    }
+  }
+  return adjacency;
+}
+
 SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piece, const PieceMotion& motion,
                                                btSoftBody& softBody) {
   const Real clearance = tool.m_options.separation.clearance;
@@ -131,6 +168,15 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
       vertexOf(node);
     }
   }
+  const FaceAdjacency& adjacency = adjacencyOf(softBody);
+  m_patchFaces.clear();
+  const auto addFace = [&](Index f) {
+    if (m_faceInPatch[f] != 0) return;
+    m_faceInPatch[f] = 1;
+    m_patchFaces.push_back(f);
+    const btSoftBody::Face& face = softBody.m_faces[static_cast<int>(f)];
+    m_patch.faces.push_back({vertexOf(*face.m_n[0]), vertexOf(*face.m_n[1]), vertexOf(*face.m_n[2])});
+  };
   for (int f = 0; f < softBody.m_faces.size(); ++f) {
     const btSoftBody::Face& face = softBody.m_faces[f];
     Aabb box;
@@ -139,7 +185,7 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
       box.include(toVec3(node->m_q));
     }
     if (swept.overlaps(box)) {
-      m_patch.faces.push_back({vertexOf(*face.m_n[0]), vertexOf(*face.m_n[1]), vertexOf(*face.m_n[2])});
+      addFace(static_cast<Index>(f));
     }
   }
   if (m_patch.vertexCount() == 0) {
@@ -147,7 +193,27 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
   }
   ++m_piecesNear;
 
-  const SeparationCounts counts = separateFromPiece(piece, motion, tool.m_options.separation, m_patch);
+  // A move can carry a node's other faces into the tool, faces the gather had no reason to take:
+  // those of every moved node join the patch, and the stage runs again, until none is missing.
+  SeparationCounts counts;
+  for (int extension = 0;; ++extension) {
+    const SeparationCounts run = separateFromPiece(piece, motion, tool.m_options.separation, m_patch);
+    counts.nodesMoved += run.nodesMoved;
+    counts.facesMoved += run.facesMoved;
+    counts.nodesInside = run.nodesInside;
+    counts.facesPierced = run.facesPierced;
+    counts.rounds = std::max(counts.rounds, run.rounds);
+    if (extension == kMostExtensions) break;
+    const std::size_t facesBefore = m_patchFaces.size();
+    const Index vertices = m_patch.vertexCount();
+    for (Index v = 0; v < vertices; ++v) {
+      if (m_patch.moved[v] == 0) continue;
+      const Index node = m_patch.nodeIds[v];
+      for (Index k = adjacency.begin[node]; k < adjacency.begin[node + 1]; ++k) addFace(adjacency.faces[k]);
+    }
+    if (m_patchFaces.size() == facesBefore) break;
+  }
+  for (Index f : m_patchFaces) m_faceInPatch[f] = 0;
 
   // Scatter the moves. A moved node's velocity along its move is what the solve gave it, or the
   // tool's own there, whichever separates faster: a contact without bounce. Taking the move itself

@@ -47,13 +47,27 @@ class SoftBodySolver : public btDefaultSoftBodySolver {
   bool separate(Tool& tool);
   SeparationCounts separatePiece(Tool& tool, const ToolModel& piece, const PieceMotion& motion, btSoftBody& softBody);
 
+  // Soft node -> its faces (CSR), per soft body, rebuilt when its node or face count changes.
+  struct FaceAdjacency {
+    const btSoftBody* softBody = nullptr;
+    Index nodeCount = kInvalidIndex;
+    Index faceCount = kInvalidIndex;
+    std::vector<Index> begin;
+    std::vector<Index> faces;
+  };
+  const FaceAdjacency& adjacencyOf(const btSoftBody& softBody);
+
   static constexpr int kMostPasses = 4;
+  static constexpr int kMostExtensions = 4;
 
   CollisionConfiguration& m_configuration;
   std::vector<Tool*> m_active;  // tools whose stage runs this step
   int m_piecesNear = 0;         // (piece, soft body) pairs with soft features near, this pass
   SeparationPatch m_patch;
   std::vector<Index> m_vertexOfNode;  // soft node -> patch vertex, kInvalidIndex when absent
+  std::vector<unsigned char> m_faceInPatch;  // soft face -> whether the patch has it
+  std::vector<Index> m_patchFaces;           // the soft faces the patch has
+  std::vector<FaceAdjacency> m_adjacency;
 };
 
 }  // namespace thintool
