@@ -32,6 +32,7 @@ inside the soft body, pierced faces, penetration deeper than 0.1 mm, non-finite 
   --seed S           one seed (repeatable)
   --seed-file F      seeds from a file, one a line; '#' starts a comment
   --algorithm X      swept (default), paper, ray-only, stock-A, stock-B or stock-E
+  --no-last-word     ThinTool without its last word after Bullet's soft solve (ToolOptions::separation)
   --verbose          print each scene's description and every step's ground truth
   --scenes DIR       where vessel.obj is (default: the source tree's eval/scenes)
 )";
@@ -77,6 +78,7 @@ int main(int argc, char** argv) {
   std::vector<std::uint64_t> seeds;
   AlgorithmKind algorithm = AlgorithmKind::Swept;
   bool verbose = false;
+  bool lastWord = true;
   std::string sceneFolder = THINTOOL_EVAL_SCENES;
   try {
     for (int i = 1; i < argc; ++i) {
@@ -94,6 +96,8 @@ int main(int argc, char** argv) {
         seeds.insert(seeds.end(), fromFile.begin(), fromFile.end());
       } else if (arg == "--algorithm") {
         algorithm = parseAlgorithm(value());
+      } else if (arg == "--no-last-word") {
+        lastWord = false;
       } else if (arg == "--verbose") {
         verbose = true;
       } else if (arg == "--scenes") {
@@ -122,6 +126,7 @@ int main(int argc, char** argv) {
     try {
       SceneSpec scene = generateScene(seed, sceneFolder);
       scene.algorithm = algorithm;
+      scene.lastWord = lastWord;
       if (verbose) std::printf("%s\n", describeScene(scene).c_str());
       RunOptions options;
       if (verbose) {
@@ -144,9 +149,9 @@ int main(int argc, char** argv) {
     nonFinite += verdict.nonFinite;
     energy += verdict.energy;
     refused += verdict.refused;
-    std::printf("seed %llu failed: %s; reproduce: %s --seed %llu --algorithm %s --verbose\n",
+    std::printf("seed %llu failed: %s; reproduce: %s --seed %llu --algorithm %s%s --verbose\n",
                 static_cast<unsigned long long>(seed), joinReasons(verdict).c_str(), argv[0],
-                static_cast<unsigned long long>(seed), algorithmKey(algorithm));
+                static_cast<unsigned long long>(seed), algorithmKey(algorithm), lastWord ? "" : " --no-last-word");
     std::fflush(stdout);
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
