@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <unordered_map>
 
 namespace thintool::eval {
 
@@ -131,6 +132,76 @@ double distanceSquaredToTriangle(const Vec3& p, const Vec3& a, const Vec3& b, co
   }
   return std::min({distanceSquaredToSegment(p, a, b), distanceSquaredToSegment(p, b, c),
                    distanceSquaredToSegment(p, c, a)});
+}
+
+bool surfaceIntersectsItself(const std::vector<Vec3>& vertices, const std::vector<Triangle>& triangles) {
+  if (triangles.size() < 2) return false;
+  double edgeSum = 0;
+  Vec3 low = vertices[triangles[0][0]];
+  Vec3 high = low;
+  for (const Triangle& t : triangles) {
+    for (int k = 0; k < 3; ++k) {
+      edgeSum += length(vertices[t[(k + 1) % 3]] - vertices[t[k]]);
+      low = componentMin(low, vertices[t[k]]);
+      high = componentMax(high, vertices[t[k]]);
+    }
+  }
+  const double cell = std::max(edgeSum / (3.0 * double(triangles.size())), 1e-9);
+  // Each face goes into every cell its box touches, at most kMostCells a side (larger faces in the
+  // same coarse cells as their neighbours, which is still exact, only slower).
+  constexpr long kMostCells = 1 << 20;
+  const auto cellOf = [&](double x, double origin) { return long(std::floor((x - origin) / cell)); };
+  std::unordered_map<long long, std::vector<int>> grid;
+  const auto key = [](long x, long y, long z) {
+    return (static_cast<long long>(x) * 73856093LL) ^ (static_cast<long long>(y) * 19349663LL) ^
+           (static_cast<long long>(z) * 83492791LL);
+  };
+  for (std::size_t f = 0; f < triangles.size(); ++f) {
+    Vec3 a = vertices[triangles[f][0]];
+    Vec3 b = a;
+    for (int k = 1; k < 3; ++k) {
+      a = componentMin(a, vertices[triangles[f][k]]);
+      b = componentMax(b, vertices[triangles[f][k]]);
+    }
+    const long x0 = cellOf(a.x, low.x), x1 = std::min(cellOf(b.x, low.x), x0 + kMostCells);
+    const long y0 = cellOf(a.y, low.y), y1 = std::min(cellOf(b.y, low.y), y0 + kMostCells);
+    const long z0 = cellOf(a.z, low.z), z1 = std::min(cellOf(b.z, low.z), z0 + kMostCells);
+    if ((x1 - x0 + 1) * (y1 - y0 + 1) * (z1 - z0 + 1) > 4096) continue;  // a face flung across the scene
+    for (long x = x0; x <= x1; ++x)
+      for (long y = y0; y <= y1; ++y)
+        for (long z = z0; z <= z1; ++z) grid[key(x, y, z)].push_back(int(f));
+  }
+  const auto edgeThroughFace = [&](const Vec3& p, const Vec3& q, const Triangle& face) {
+    const Vec3& a = vertices[face[0]];
+    const Vec3& b = vertices[face[1]];
+    const Vec3& c = vertices[face[2]];
+    const Vec3 normal = cross(b - a, c - a);
+    const double dp = dot(normal, p - a);
+    const double dq = dot(normal, q - a);
+    if ((dp > 0) == (dq > 0) || dp == dq) return false;
+    const Vec3 x = p + (q - p) * (dp / (dp - dq));
+    return dot(cross(b - a, x - a), normal) > 0 && dot(cross(c - b, x - b), normal) > 0 &&
+           dot(cross(a - c, x - c), normal) > 0;
+  };
+  for (const auto& binned : grid) {
+    const std::vector<int>& faces = binned.second;
+    for (std::size_t i = 0; i < faces.size(); ++i) {
+      for (std::size_t j = 0; j < faces.size(); ++j) {
+        if (i == j) continue;
+        const Triangle& edgeFace = triangles[std::size_t(faces[i])];
+        const Triangle& face = triangles[std::size_t(faces[j])];
+        bool sharesNode = false;
+        for (int u : edgeFace) {
+          for (int v : face) sharesNode = sharesNode || u == v;
+        }
+        if (sharesNode) continue;
+        for (int k = 0; k < 3; ++k) {
+          if (edgeThroughFace(vertices[edgeFace[k]], vertices[edgeFace[(k + 1) % 3]], face)) return true;
+        }
+      }
+    }
+  }
+  return false;
 }
 
 double windingNumber(const Vec3& p, const std::vector<Vec3>& vertices, const std::vector<Triangle>& triangles) {
@@ -296,10 +367,15 @@ const GroundTruthStep& GroundTruth::update(const std::vector<Pose>& toolPoses, c
       const Vec3 centre = poses[k].apply(m_pieces[k].solid.centre());
       m_step.toolInside = std::abs(windingNumber(centre, nodes, faces)) > 0.5;
     }
+    if (m_step.toolInside && surfaceIntersectsItself(nodes, faces)) {
+      m_step.toolInside = false;
+      m_step.selfIntersecting = true;
+    }
   }
 
   ++m_run.steps;
   m_run.toolInsideSteps += m_step.toolInside ? 1 : 0;
+  m_run.selfIntersectingSteps += m_step.selfIntersecting ? 1 : 0;
   m_run.endsInside = m_step.toolInside;
   m_run.maxPenetration = std::max(m_run.maxPenetration, m_step.maxPenetration);
   m_run.piercedSteps += m_step.piercedFaces > 0 ? 1 : 0;

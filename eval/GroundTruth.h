@@ -24,6 +24,12 @@
 ///   rotation is one interval, the two readings the same, the test above unchanged.
 /// - Tool inside: the centre of a piece lies inside the closed soft surface, by the generalised
 ///   winding number (Jacobson et al. 2013), which, unlike ray parity, has no unlucky directions.
+///   The winding number speaks for a surface that does not pass through itself; Bullet does not
+///   keep a soft body from doing so (self-collision is off by default), and a body folded through
+///   itself round a tool winds round it with no face of it ever crossing the tool. A step whose
+///   surface passes through itself (an edge through a face that shares no node with it) therefore
+///   counts apart, as selfIntersecting, not as tool inside; it is tested only in the steps the
+///   winding number says inside.
 /// - Pierced face: at the end of a step, a soft triangle reaches deeper than the tolerance into a
 ///   piece. This catches what the node and centroid samples miss: a needle's tip through the middle
 ///   of a large face, or a blade's edge through a face whose corners all lie outside. It is the
@@ -84,6 +90,10 @@ class SolidDistance {
 /// Squared distance from p to triangle (a, b, c), exact for any triangle, degenerate ones included.
 double distanceSquaredToTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
 
+/// Whether some edge of the surface passes through a face that shares no node with it; the faces
+/// are binned in a uniform grid of their mean edge length, so the test is near linear in faces.
+bool surfaceIntersectsItself(const std::vector<Vec3>& vertices, const std::vector<Triangle>& triangles);
+
 /// The generalised winding number of a closed surface about p: 1 inside, 0 outside, whatever the
 /// surface's orientation (its sign follows it; callers compare |w| with 0.5).
 double windingNumber(const Vec3& p, const std::vector<Vec3>& vertices, const std::vector<Triangle>& triangles);
@@ -99,7 +109,8 @@ struct GroundTruthPiece {
 struct GroundTruthStep {
   int crossings = 0;          ///< nodes that passed through a tool this step
   int piercedFaces = 0;       ///< soft faces reaching deeper than the tolerance into a tool at the step's end
-  bool toolInside = false;    ///< a piece's centre is inside the closed soft surface
+  bool toolInside = false;    ///< a piece's centre is inside the closed soft surface, which does not pass through itself
+  bool selfIntersecting = false;  ///< the winding number said inside, but the surface passes through itself
   double maxPenetration = 0;  ///< m, deepest surface sample inside a tool
   double sumSquaredPenetration = 0;  ///< m², over the penetrating samples
   int penetratingSamples = 0;
@@ -112,6 +123,7 @@ struct GroundTruthRun {
   int stillCrossed = 0;       ///< of those, at the end on the far side of the first piece they crossed, within it
   int toolInsideSteps = 0;
   bool endsInside = false;
+  int selfIntersectingSteps = 0;  ///< steps whose inside verdict a self-intersecting surface voided
   double maxPenetration = 0;  ///< m
   double rmsPenetration = 0;  ///< m, over every penetrating sample of every step (0 when none)
   int piercedSteps = 0;       ///< steps that ended with at least one pierced face

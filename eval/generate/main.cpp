@@ -66,9 +66,10 @@ void printSteps(const RunResult& run) {
     std::printf("%6zu %9.5f %9d %7s %12.4g %7d %12.4g\n", i + 1, s.time, s.crossings, s.toolInside ? "yes" : "no",
                 s.maxPenetration * 1000, s.piercedFaces, s.nodeSpeed);
   }
-  std::printf("faces %d, nodes %d, crossed nodes %d, inside steps %d, pierced steps %d, deepest %.4g mm, "
-              "peak node speed %.4g m/s, peak tool speed %.4g m/s\n",
-              run.softFaces, run.softNodes, run.truth.crossedNodes, run.truth.toolInsideSteps, run.truth.piercedSteps,
+  std::printf("faces %d, nodes %d, crossed nodes %d, inside steps %d (and %d with the surface through itself), "
+              "pierced steps %d, deepest %.4g mm, peak node speed %.4g m/s, peak tool speed %.4g m/s\n",
+              run.softFaces, run.softNodes, run.truth.crossedNodes, run.truth.toolInsideSteps,
+              run.truth.selfIntersectingSteps, run.truth.piercedSteps,
               run.truth.maxPenetration * 1000, run.peakNodeSpeed, run.peakToolSpeed);
 }
 

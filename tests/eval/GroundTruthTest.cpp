@@ -263,5 +263,40 @@ TEST(GroundTruth, AStepWithoutTurningIsOneInterval) {
   }
 }
 
+// A closed surface folded through itself: two tetrahedra whose surfaces interpenetrate, as one
+// body, and the same two apart.
+TEST(GroundTruth, ASurfaceThroughItselfIsFound) {
+  const std::vector<Triangle> faces{{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {2, 0, 3}, {4, 6, 5}, {4, 5, 7}, {5, 6, 7}, {6, 4, 7}};
+  std::vector<Vec3> apart{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {3, 0, 0}, {4, 0, 0}, {3, 1, 0}, {3, 0, 1}};
+  EXPECT_FALSE(surfaceIntersectsItself(apart, faces));
+  std::vector<Vec3> through = apart;
+  for (std::size_t i = 4; i < 8; ++i) through[i] = through[i] - Vec3{2.8, -0.1, -0.1};
+  EXPECT_TRUE(surfaceIntersectsItself(through, faces));
+}
+
+TEST(GroundTruth, AToolInsideASurfaceThroughItselfCountsApart) {
+  // The plate's centre inside a small box-shaped closed surface, which is sound, then the same
+  // surface with a second closed sheet passing through it.
+  const auto closedPlateTruth = [] {
+    std::vector<GroundTruthPiece> pieces;
+    pieces.push_back({SolidDistance(ConvexSolid::box(kPlateHalf)), Pose{}, 0});
+    return GroundTruth(std::move(pieces), true);
+  };
+  GroundTruth truth = closedPlateTruth();
+  const ConvexSolid cube = ConvexSolid::box({0.5, 0.5, 0.5});
+  std::vector<Vec3> nodes = cube.vertices;
+  std::vector<Triangle> faces = cube.triangles;
+  truth.start({Pose{}}, nodes, faces);
+  EXPECT_TRUE(truth.update({Pose{}}, nodes, faces).toolInside);
+  for (const Vec3& v : cube.vertices) nodes.push_back(v * 0.5 + Vec3{0.4, 0.1, 0.1});
+  for (const Triangle& t : cube.triangles) faces.push_back({t[0] + 8, t[1] + 8, t[2] + 8});
+  GroundTruth folded = closedPlateTruth();
+  folded.start({Pose{}}, nodes, faces);
+  const GroundTruthStep& step = folded.update({Pose{}}, nodes, faces);
+  EXPECT_FALSE(step.toolInside);
+  EXPECT_TRUE(step.selfIntersecting);
+  EXPECT_EQ(folded.run().selfIntersectingSteps, 1);
+}
+
 }  // namespace
 }  // namespace thintool::eval
