@@ -3,6 +3,8 @@
 # and UndefinedBehaviorSanitizer; then builds ThinTool with warnings as errors against Bullet's
 # float64 build and its float build and runs the whole test suite on each (unit, integration,
 # install and a brief benchmark run): the core computes in double either way, the glue converts.
+# The generated scenes' verdicts (label "generated") are asserted in the float build only: which of
+# those chaotic scenes fail depends on Bullet's precision (tests/eval/GeneratedScenesTest.cpp).
 # The float build's ctest summary is the last thing printed.
 # Needs the packages of scripts/install-deps.sh.
 set -eu
@@ -13,7 +15,7 @@ cd "$(dirname "$0")/.."
 cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" \
   -DTHINTOOL_WERROR=ON -DTHINTOOL_SANITIZE=address,undefined,float-cast-overflow -DTHINTOOL_BUILD_BENCHMARKS=OFF
 cmake --build build-sanitize --parallel 2
-ctest --test-dir build-sanitize --parallel 2 --output-on-failure --exclude-regex 'Install|Docs'
+ctest --test-dir build-sanitize --parallel 2 --output-on-failure --exclude-regex 'Install|Docs' --label-exclude generated
 
 CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTHINTOOL_BUILD_FUZZERS=ON \
   -DTHINTOOL_BUILD_TESTS=OFF -DTHINTOOL_BUILD_EXAMPLES=OFF -DTHINTOOL_BUILD_BENCHMARKS=OFF
@@ -30,7 +32,7 @@ done
 cmake -S . -B build-float64 -DCMAKE_BUILD_TYPE=Release -DTHINTOOL_WERROR=ON -DTHINTOOL_BULLET_DOUBLE=ON \
   -DTHINTOOL_BUILD_BENCHMARKS=OFF
 cmake --build build-float64 --parallel 2
-ctest --test-dir build-float64 --parallel 2 --output-on-failure --exclude-regex 'Install|Docs'
+ctest --test-dir build-float64 --parallel 2 --output-on-failure --exclude-regex 'Install|Docs' --label-exclude generated
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DTHINTOOL_WERROR=ON
 cmake --build build --parallel 2
 ctest --test-dir build --parallel 2 --output-on-failure
