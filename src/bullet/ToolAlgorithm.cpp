@@ -82,7 +82,11 @@ void fillHoldContact(btSoftBody::RContact& contact, btSoftBody::Node& node, cons
   contact.m_c4 = 0;  // no positional term: the hold body already aims at the plane
 }
 
-// Appends a contact pass after the last link pass of the soft body's position solver, once.
+// Appends a contact pass after the last link pass of the soft body's position solver, once. Bullet
+// runs contacts before links in each iteration, so the links of a grasped body drag the nodes that
+// friction holds to the jaws; the extra pass lets the friction holds have the iteration's last say.
+// (Penetration needs no such pass: the last word, after the solver, answers for it.) The pass also
+// re-solves that soft body's other contacts (with the ground, say) once more per iteration.
 void makeContactsLast(btSoftBody& softBody) {
   auto& sequence = softBody.m_cfg.m_psequence;
   bool linksSeen = false;
@@ -345,7 +349,7 @@ void ToolAlgorithm::processValidPiece(PairState& state, btSoftBody& softBody, co
   if (options.response.kind == ResponseKind::Constraint && options.response.holdInSolver) {
     computeHolds(model, pose, previousPose, state.patch, skin, state.corrections, swept, m_tool.m_responseWorkspace,
                  state.holds);
-    if (options.response.contactsLast) {
+    if (options.response.friction.enabled) {
       makeContactsLast(softBody);
     }
   }

@@ -68,15 +68,11 @@ struct ResponseSettings {
   /// node near the tool behind the tool face it is in front of (see computeHolds). Without them the
   /// links and the pressure of a squashed body pull nodes back into the tool within the step.
   bool holdInSolver = true;
-  /// With holdInSolver: make contacts, not links, the last word of each of the soft solver's
-  /// position iterations, by appending a contact pass (ePSolver::RContacts) to the position
-  /// sequence (btSoftBody::m_cfg.m_psequence) of each soft body the tool touches, once. Bullet
-  /// runs contacts before links, so a link pulled hard by a large deformation can drag a held node
-  /// through the tool in the last iteration. The pass also re-solves that soft body's other
-  /// contacts (with the ground, say) once more per iteration; switch it off to keep Bullet's order.
-  bool contactsLast = true;
   /// Constraint only: friction at the moved nodes; a node that sticks is held to the tool's
-  /// surface motion in the soft solver too (its hold is not frictionless).
+  /// surface motion in the soft solver too (its hold is not frictionless), and the soft bodies
+  /// the tool touches get a contact pass after the links in each of their position iterations
+  /// (btSoftBody::m_cfg.m_psequence), so that the links of a grasped body do not drag the held
+  /// nodes along the jaws.
   FrictionSettings friction;
 };
 
