@@ -52,35 +52,49 @@ struct NodeVerdict {
   Index plane = kInvalidIndex;  // the face the node goes back in front of
 };
 
-// Follows a node's path through the piece's frame along the arc (see the file comment of
-// Separation.h) and says whether, and through which face, it must go back out.
+// Reads a node's path through the piece (see the file comment of Separation.h) and says whether,
+// and through which face, it must go back out. When the piece turns, where the node went in
+// between is not known, and there are two readings of it: straight in the piece's frame (the
+// chord: a node that rode on a face stays on it) and straight in the world with the piece on its
+// arc (a node the piece never reached is left alone). A node that ends outside was carried through
+// only if both readings take it through; one that ends inside leaves by the face the chord entered
+// by, else the arc's, else the nearest. Without a turn the two readings are one.
 NodeVerdict judgeNode(const ToolModel& piece, const PieceMotion& motion, const Pose* poses, const Vec3& start,
                       const Vec3& end, Real clearance, Vec3& outEndLocal) {
   const std::vector<Plane>& planes = piece.planes;
-  Vec3 previous = motion.start().applyInverse(start);
-  Index entered = kInvalidIndex;
-  Index carriedFrom = kInvalidIndex;
+  const auto carries = [&](Index enter, Index leave) {
+    return enter != kInvalidIndex && leave != kInvalidIndex && dot(planes[enter].normal, planes[leave].normal) < kTurnedAway;
+  };
+  const Vec3 startLocal = motion.start().applyInverse(start);
+  const Vec3 endLocal = motion.end().applyInverse(end);
+  outEndLocal = endLocal;
+  const ClipResult chord = clipSegmentConvex(planes, 0, startLocal, endLocal);
+  Index entered = chord.hit ? chord.enterPlane : kInvalidIndex;
+  bool carried = chord.hit && carries(chord.enterPlane, chord.leavePlane);
   const int samples = motion.samples();
-  for (int k = 1; k <= samples; ++k) {
-    const Real t = Real(k) / Real(samples);
-    const Vec3 current = poses[k].applyInverse(k == samples ? end : start + (end - start) * t);
-    const ClipResult clip = clipSegmentConvex(planes, 0, previous, current);
-    if (clip.hit) {
-      if (clip.enterPlane != kInvalidIndex) entered = clip.enterPlane;
-      if (clip.leavePlane != kInvalidIndex && entered != kInvalidIndex &&
-          dot(planes[entered].normal, planes[clip.leavePlane].normal) < kTurnedAway) {
-        carriedFrom = entered;
+  if (samples > 1) {
+    Vec3 previous = startLocal;
+    Index arcEntered = kInvalidIndex;
+    bool arcCarried = false;
+    for (int k = 1; k <= samples; ++k) {
+      const Real t = Real(k) / Real(samples);
+      const Vec3 current = k == samples ? endLocal : poses[k].applyInverse(start + (end - start) * t);
+      const ClipResult clip = clipSegmentConvex(planes, 0, previous, current);
+      if (clip.hit) {
+        if (clip.enterPlane != kInvalidIndex) arcEntered = clip.enterPlane;
+        arcCarried = arcCarried || carries(arcEntered, clip.leavePlane);
       }
+      previous = current;
     }
-    previous = current;
+    if (entered == kInvalidIndex) entered = arcEntered;
+    carried = carried && arcCarried;
   }
-  outEndLocal = previous;
   Index nearest = 0;
-  if (outsideDistance(planes, previous, &nearest) < 0) {
+  if (outsideDistance(planes, endLocal, &nearest) < 0) {
     return {true, entered != kInvalidIndex ? entered : nearest};
   }
-  if (carriedFrom != kInvalidIndex && planes[carriedFrom].signedDistance(previous) < clearance) {
-    return {true, carriedFrom};
+  if (carried && planes[chord.enterPlane].signedDistance(endLocal) < clearance) {
+    return {true, chord.enterPlane};
   }
   return {};
 }
