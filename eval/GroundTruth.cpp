@@ -313,6 +313,7 @@ void GroundTruth::start(const std::vector<Pose>& toolPoses, const std::vector<Ve
   m_sideBeforeCrossing.assign(nodes.size(), 0);
   m_step = {};
   m_run = {};
+  m_wrappedByFold = false;
   m_sumSquared = 0;
   m_samples = 0;
 }
@@ -367,10 +368,11 @@ const GroundTruthStep& GroundTruth::update(const std::vector<Pose>& toolPoses, c
       const Vec3 centre = poses[k].apply(m_pieces[k].solid.centre());
       m_step.toolInside = std::abs(windingNumber(centre, nodes, faces)) > 0.5;
     }
-    if (m_step.toolInside && surfaceIntersectsItself(nodes, faces)) {
+    if (m_step.toolInside && (m_wrappedByFold || surfaceIntersectsItself(nodes, faces))) {
       m_step.toolInside = false;
       m_step.selfIntersecting = true;
     }
+    m_wrappedByFold = m_step.selfIntersecting;
   }
 
   ++m_run.steps;

@@ -29,7 +29,8 @@
 ///   itself round a tool winds round it with no face of it ever crossing the tool. A step whose
 ///   surface passes through itself (an edge through a face that shares no node with it) therefore
 ///   counts apart, as selfIntersecting, not as tool inside; it is tested only in the steps the
-///   winding number says inside.
+///   winding number says inside. A tool found inside that way stays so attributed while it stays
+///   inside: the fold that wrapped it may untangle with the tool within.
 /// - Pierced face: at the end of a step, a soft triangle reaches deeper than the tolerance into a
 ///   piece. This catches what the node and centroid samples miss: a needle's tip through the middle
 ///   of a large face, or a blade's edge through a face whose corners all lie outside. It is the
@@ -166,6 +167,7 @@ class GroundTruth {
   std::vector<int> m_crossedPiece;   // per node: the first piece it went through, or -1
   std::vector<signed char> m_sideBeforeCrossing;  // per node: its side of that piece before
   GroundTruthStep m_step;
+  bool m_wrappedByFold = false;  // the tool is inside since a step whose surface passed through itself
   GroundTruthRun m_run;
   double m_sumSquared = 0;
   long m_samples = 0;

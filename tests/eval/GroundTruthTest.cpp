@@ -296,6 +296,17 @@ TEST(GroundTruth, AToolInsideASurfaceThroughItselfCountsApart) {
   EXPECT_FALSE(step.toolInside);
   EXPECT_TRUE(step.selfIntersecting);
   EXPECT_EQ(folded.run().selfIntersectingSteps, 1);
+  // The fold untangles with the plate still within: still the fold's doing, not the tool's.
+  nodes.resize(8);
+  faces.resize(12);
+  for (std::size_t i = 0; i < 8; ++i) nodes.push_back(cube.vertices[i] * 0.5 + Vec3{3, 0, 0});
+  for (const Triangle& t : cube.triangles) faces.push_back({t[0] + 8, t[1] + 8, t[2] + 8});
+  EXPECT_TRUE(folded.update({Pose{}}, nodes, faces).selfIntersecting);
+  EXPECT_EQ(folded.run().toolInsideSteps, 0);
+  // Once the plate has left, inside counts again.
+  const GroundTruthStep& away = folded.update({at(10, 0, 0)}, nodes, faces);
+  EXPECT_FALSE(away.toolInside || away.selfIntersecting);
+  EXPECT_TRUE(folded.update({Pose{}}, nodes, faces).toolInside);
 }
 
 }  // namespace
