@@ -452,7 +452,8 @@ RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
     for (Tool* tool : w.thinTools) {
       if (tool == nullptr) continue;
       const ToolStepReport& report = tool->report();
-      sample.toolMicroseconds += report.diagnostics.detectionMicroseconds + report.diagnostics.responseMicroseconds;
+      sample.toolMicroseconds += report.diagnostics.detectionMicroseconds + report.diagnostics.responseMicroseconds +
+                                 report.diagnostics.lastWord.microseconds;
       sample.force += report.contactForce.force;
     }
     const std::vector<Vec3> nodes = nodesOf(soft);

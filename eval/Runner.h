@@ -24,7 +24,7 @@ struct StepSample {
   int piercedFaces = 0;          ///< soft faces deeper than the ground truth's tolerance into a tool
   double nodeSpeed = 0;          ///< m/s, the fastest soft node this step
   double stepMicroseconds = 0;   ///< stepSimulation's wall time
-  double toolMicroseconds = 0;   ///< ThinTool's detection and response (0 for stock)
+  double toolMicroseconds = 0;   ///< ThinTool's detection, response and last word (0 for stock)
   Vec3 force;                    ///< N, the tissue's force on the tools (ThinTool with force on)
 };
 

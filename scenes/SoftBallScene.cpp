@@ -391,7 +391,7 @@ PressResult runPress(const PressSettings& settings) {
     if (thintool::Tool* tool = scene.tool()) {
       const thintool::ToolStepReport& report = tool->report();
       const thintool::ToolDiagnostics& d = report.diagnostics;
-      toolMicroseconds += d.detectionMicroseconds + d.responseMicroseconds;
+      toolMicroseconds += d.detectionMicroseconds + d.responseMicroseconds + d.lastWord.microseconds;
       result.maxContacts = std::max(result.maxContacts, int(d.detection.colliding));
       result.excludedByCheck1 += d.detection.excludedByCheck1;
       result.excludedByCheck2 += d.detection.excludedByCheck2;

@@ -26,13 +26,14 @@ for row in json.loads(output)["benchmarks"]:
         continue
     name, faces, margin = row["run_name"].split("/")[:3]
     best = fastest.setdefault((name, int(faces), int(margin)), dict(row))
-    for key in ("real_time", "detectUs"):
+    for key in ("real_time", "detectUs", "lastWordUs"):
         if key in row:
             best[key] = min(best[key], row[key])
 print("| faces, margin | stock | ThinTool: stage / detection | ratio to stock: stage / detection "
+      "| last word | ratio to stock: stage + last word "
       "| paper: stage / detection | ThinTool faces gathered (meeting the swept box) "
       "| faces its walk met | swept tests | stock nodes in its box |")
-print("|---|---|---|---|---|---|---|---|---|")
+print("|---|---|---|---|---|---|---|---|---|---|---|")
 
 
 def number(value):
@@ -47,6 +48,7 @@ for faces, margin in sizes:
     base = stock["real_time"]
     print(f"| {faces:,}, {margin} mm | {number(base)} | {number(tool['real_time'])} / {number(tool['detectUs'])} "
           f"| {tool['real_time'] / base:.2f} / {tool['detectUs'] / base:.2f} "
+          f"| {number(tool['lastWordUs'])} | {(tool['real_time'] + tool['lastWordUs']) / base:.2f} "
           f"| {number(paper['real_time'])} / {number(paper['detectUs'])} "
           f"| {tool['facesNear']:,.0f} ({tool['facesInSweptBox']:,.0f}) | {tool['facesWalked']:,.0f} "
           f"| {tool['tests']:,.0f} "

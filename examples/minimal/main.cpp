@@ -74,7 +74,7 @@ int main() {
       std::printf("step %3d: %3u contacts, %3u excluded by check 1, %3u by check 2, force %6.2f N, %5.1f us\n",
                   step + 1, unsigned(d.detection.colliding), unsigned(d.detection.excludedByCheck1),
                   unsigned(d.detection.excludedByCheck2), report.wrench.force.y,
-                  d.detectionMicroseconds + d.responseMicroseconds);
+                  d.detectionMicroseconds + d.responseMicroseconds + d.lastWord.microseconds);
     }
   }
   std::printf("deepest soft face left inside the plate after a step: %.4f m\n", double(deepest));

@@ -54,7 +54,8 @@ Overlay overlayOf(Session& session, bool paused) {
     overlay.panelLines.emplace_back(line);
     std::snprintf(line, sizeof line, "force on the tool %.2f N (response), ThinTool %.0f us",
                   length(report.wrench.force),
-                  report.diagnostics.detectionMicroseconds + report.diagnostics.responseMicroseconds);
+                  report.diagnostics.detectionMicroseconds + report.diagnostics.responseMicroseconds +
+                      report.diagnostics.lastWord.microseconds);
     overlay.panelLines.emplace_back(line);
   } else {
     overlay.panelLines.emplace_back("stock Bullet: no ThinTool report");

@@ -53,6 +53,7 @@ SoftBodySolver::SoftBodySolver(CollisionConfiguration& configuration) : m_config
 
 void SoftBodySolver::solveConstraints(btScalar timeStep) {
   btDefaultSoftBodySolver::solveConstraints(timeStep);
+  ++m_step;
   std::vector<Tool*>& tools = m_active;
   tools.clear();
   for (Tool* tool : m_configuration.tools()) {
@@ -104,41 +105,77 @@ bool SoftBodySolver::separate(Tool& tool) {
   return moved;
 }
 
-const SoftBodySolver::FaceAdjacency& SoftBodySolver::adjacencyOf(const btSoftBody& softBody) {
-  FaceAdjacency* found = nullptr;
-  for (FaceAdjacency& adjacency : m_adjacency) {
-    if (adjacency.softBody == &softBody) found = &adjacency;
+SoftBodySolver::SoftBodyCache& SoftBodySolver::cacheOf(const btSoftBody& softBody) {
+  SoftBodyCache* found = nullptr;
+  for (SoftBodyCache& cache : m_caches) {
+    if (cache.softBody == &softBody) found = &cache;
   }
   if (found == nullptr) {
-    m_adjacency.emplace_back();
-    found = &m_adjacency.back();
+    m_caches.emplace_back();
+    found = &m_caches.back();
     found->softBody = &softBody;
   }
-  FaceAdjacency& adjacency = *found;
+  SoftBodyCache& cache = *found;
   const auto nodeCount = static_cast<Index>(softBody.m_nodes.size());
   const auto faceCount = static_cast<Index>(softBody.m_faces.size());
   if (m_faceInPatch.size() < faceCount) m_faceInPatch.resize(faceCount, 0);
-  if (adjacency.nodeCount == nodeCount && adjacency.faceCount == faceCount) return adjacency;
-  // Built when the body's topology is new to the solver or has changed (refine, cut): never in a
-  // step that only moves nodes.
-  adjacency.nodeCount = nodeCount;
-  adjacency.faceCount = faceCount;
-  adjacency.begin.assign(nodeCount + 1, 0);
-  const btSoftBody::Node* first = nodeCount > 0 ? &softBody.m_nodes[0] : nullptr;
-  for (Index f = 0; f < faceCount; ++f) {
-    for (const btSoftBody::Node* node : softBody.m_faces[static_cast<int>(f)].m_n) {
-      ++adjacency.begin[static_cast<Index>(node - first) + 1];
+  if (m_vertexOfNode.size() < nodeCount) m_vertexOfNode.resize(nodeCount, kInvalidIndex);
+  if (cache.nodeCount != nodeCount || cache.faceCount != faceCount) {
+    // Built when the body's topology is new to the solver or has changed (refine, cut): never in
+    // a step that only moves nodes.
+    cache.nodeCount = nodeCount;
+    cache.faceCount = faceCount;
+    cache.measuredReach = -1;
+    cache.begin.assign(nodeCount + 1, 0);
+    const btSoftBody::Node* first = nodeCount > 0 ? &softBody.m_nodes[0] : nullptr;
+    for (Index f = 0; f < faceCount; ++f) {
+      for (const btSoftBody::Node* node : softBody.m_faces[static_cast<int>(f)].m_n) {
+        ++cache.begin[static_cast<Index>(node - first) + 1];
+      }
+    }
+    for (Index n = 0; n < nodeCount; ++n) cache.begin[n + 1] += cache.begin[n];
+    cache.faces.resize(cache.begin[nodeCount]);
+    std::vector<Index> filled(cache.begin.begin(), cache.begin.end() - 1);
+    for (Index f = 0; f < faceCount; ++f) {
+      for (const btSoftBody::Node* node : softBody.m_faces[static_cast<int>(f)].m_n) {
+        cache.faces[filled[static_cast<Index>(node - first)]++] = f;
+      }
     }
   }
-  for (Index n = 0; n < nodeCount; ++n) adjacency.begin[n + 1] += adjacency.begin[n];
-  adjacency.faces.resize(adjacency.begin[nodeCount]);
-  std::vector<Index> filled(adjacency.begin.begin(), adjacency.begin.end() - 1);
-  for (Index f = 0; f < faceCount; ++f) {
-    for (const btSoftBody::Node* node : softBody.m_faces[static_cast<int>(f)].m_n) {
-      adjacency.faces[filled[static_cast<Index>(node - first)]++] = f;
-    }
+  if (cache.stepSeen != m_step) {
+    // The bound grows with each step's motion; after a step it did not see, it is measured anew.
+    if (cache.stepSeen != m_step - 1) cache.measuredReach = -1;
+    cache.stepSeen = m_step;
+    updateFaceReach(cache, softBody);
   }
-  return adjacency;
+  return cache;
+}
+
+void SoftBodySolver::updateFaceReach(SoftBodyCache& cache, const btSoftBody& softBody) {
+  if (cache.measuredReach >= 0) {
+    btScalar farthest = 0;
+    for (int i = 0; i < softBody.m_nodes.size(); ++i) {
+      const btSoftBody::Node& node = softBody.m_nodes[i];
+      farthest = btMax(farthest, (node.m_x - node.m_q).length2());
+    }
+    cache.faceReach += 2 * Real(btSqrt(farthest));
+    if (cache.faceReach <= 2 * cache.measuredReach + Real(1e-9)) return;
+  }
+  Real reach = 0;
+  for (int f = 0; f < softBody.m_faces.size(); ++f) {
+    const btSoftBody::Face& face = softBody.m_faces[f];
+    btVector3 low = face.m_n[0]->m_x;
+    btVector3 high = low;
+    for (const btSoftBody::Node* node : face.m_n) {
+      low.setMin(node->m_x);
+      low.setMin(node->m_q);
+      high.setMax(node->m_x);
+      high.setMax(node->m_q);
+    }
+    reach = std::max(reach, Real((high - low).length()));
+  }
+  cache.measuredReach = reach;
+  cache.faceReach = reach;
 }
 
 SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piece, const PieceMotion& motion,
@@ -146,13 +183,14 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
   const Real clearance = tool.m_options.separation.clearance;
   const Aabb swept = sweptBounds(piece.bounds, motion).expanded(clearance);
   const int nodeCount = softBody.m_nodes.size();
-  if (m_vertexOfNode.size() < static_cast<std::size_t>(nodeCount)) {
-    m_vertexOfNode.resize(static_cast<std::size_t>(nodeCount), kInvalidIndex);
-  }
 
-  // Gather: the nodes and the faces whose moves this step meet the piece's reach, with the faces'
-  // nodes.
+  // Gather: the nodes whose moves this step meet the piece's reach, and the faces whose boxes
+  // (their nodes at both ends of the step) meet it, found among the faces of the nodes near the
+  // reach grown by the cache's face reach, with the faces' nodes.
+  SoftBodyCache& cache = cacheOf(softBody);
+  const Aabb grown = swept.expanded(cache.faceReach);
   m_patch.clear();
+  m_nearNodes.clear();
   const btSoftBody::Node* first = nodeCount > 0 ? &softBody.m_nodes[0] : nullptr;
   const auto vertexOf = [&](const btSoftBody::Node& node) {
     const auto id = static_cast<Index>(&node - first);
@@ -162,13 +200,18 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
     }
     return vertex;
   };
+  const auto meets = [](const Aabb& box, const btVector3& a, const btVector3& b) {
+    for (int axis = 0; axis < 3; ++axis) {
+      if (Real(btMax(a[axis], b[axis])) < box.min[axis] || Real(btMin(a[axis], b[axis])) > box.max[axis]) return false;
+    }
+    return true;
+  };
   for (int i = 0; i < nodeCount; ++i) {
     const btSoftBody::Node& node = softBody.m_nodes[i];
-    if (swept.overlaps(Aabb::fromPoints(toVec3(node.m_q), toVec3(node.m_x)))) {
-      vertexOf(node);
-    }
+    if (!meets(grown, node.m_q, node.m_x)) continue;
+    m_nearNodes.push_back(static_cast<Index>(i));
+    if (meets(swept, node.m_q, node.m_x)) vertexOf(node);
   }
-  const FaceAdjacency& adjacency = adjacencyOf(softBody);
   m_patchFaces.clear();
   const auto addFace = [&](Index f) {
     if (m_faceInPatch[f] != 0) return;
@@ -177,18 +220,27 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
     const btSoftBody::Face& face = softBody.m_faces[static_cast<int>(f)];
     m_patch.faces.push_back({vertexOf(*face.m_n[0]), vertexOf(*face.m_n[1]), vertexOf(*face.m_n[2])});
   };
-  for (int f = 0; f < softBody.m_faces.size(); ++f) {
-    const btSoftBody::Face& face = softBody.m_faces[f];
-    Aabb box;
-    for (const btSoftBody::Node* node : face.m_n) {
-      box.include(toVec3(node->m_x));
-      box.include(toVec3(node->m_q));
-    }
-    if (swept.overlaps(box)) {
-      addFace(static_cast<Index>(f));
+  // Faces looked at and found away are marked 2 for the rest of the gather, so each is boxed once.
+  for (Index node : m_nearNodes) {
+    for (Index k = cache.begin[node]; k < cache.begin[node + 1]; ++k) {
+      const Index f = cache.faces[k];
+      if (m_faceInPatch[f] != 0) continue;
+      const btSoftBody::Face& face = softBody.m_faces[static_cast<int>(f)];
+      Aabb box;
+      for (const btSoftBody::Node* n : face.m_n) {
+        box.include(toVec3(n->m_x));
+        box.include(toVec3(n->m_q));
+      }
+      if (swept.overlaps(box)) {
+        addFace(f);
+      } else {
+        m_faceInPatch[f] = 2;
+        m_patchFaces.push_back(f);
+      }
     }
   }
   if (m_patch.vertexCount() == 0) {
+    for (Index f : m_patchFaces) m_faceInPatch[f] = 0;
     return {};
   }
   ++m_piecesNear;
@@ -209,7 +261,10 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
     for (Index v = 0; v < vertices; ++v) {
       if (m_patch.moved[v] == 0) continue;
       const Index node = m_patch.nodeIds[v];
-      for (Index k = adjacency.begin[node]; k < adjacency.begin[node + 1]; ++k) addFace(adjacency.faces[k]);
+      for (Index k = cache.begin[node]; k < cache.begin[node + 1]; ++k) {
+        if (m_faceInPatch[cache.faces[k]] == 2) m_faceInPatch[cache.faces[k]] = 0;  // looked at, away: take it now
+        addFace(cache.faces[k]);
+      }
     }
     if (m_patchFaces.size() == facesBefore) break;
   }

@@ -237,7 +237,7 @@ bool moveFace(SeparationPatch& patch, const std::array<Index, 3>& face, const Ve
   for (Index v : face) {
     if (patch.inverseMasses[v] > 0) {
       patch.positions[v] += move * (3 * patch.inverseMasses[v] / weights);
-      patch.moved[v] = 2;
+      patch.moved[v] = 1;
       patch.directions[v] = direction;
     }
   }
@@ -281,12 +281,20 @@ SeparationCounts separateFromPiece(const ToolModel& piece, const PieceMotion& mo
 
   // Each round moves the faces, then the nodes, so that when the rounds run out the nodes have
   // had the last say: a face left pierced is counted, a node is never left carried through.
-  // A vertex is marked 2 while the current round has moved it (the node pass judges only those
-  // after the first round), 1 once it has been moved at all.
+  // After the first round only what the previous round moved is looked at again: a face with a
+  // vertex moved since, a node a face moved in this round.
+  patch.movedInRound.assign(vertexCount, -1);
+  patch.faceMet.assign(patch.faces.size(), 0);
+  const auto touched = [&](const std::array<Index, 3>& face, int since) {
+    return patch.movedInRound[face[0]] >= since || patch.movedInRound[face[1]] >= since ||
+           patch.movedInRound[face[2]] >= since;
+  };
   for (int round = 0; round < std::max(1, settings.maxRounds); ++round) {
     bool changed = false;
     counts.rounds = round + 1;
-    for (const std::array<Index, 3>& face : patch.faces) {
+    for (std::size_t f = 0; f < patch.faces.size(); ++f) {
+      const std::array<Index, 3>& face = patch.faces[f];
+      if (round > 0 && !touched(face, round - 1)) continue;
       Vec3 now[3];
       Vec3 before[3];
       Aabb reach;
@@ -304,13 +312,17 @@ SeparationCounts separateFromPiece(const ToolModel& piece, const PieceMotion& mo
       if (!near.overlaps(reach)) continue;
       const Vec3 back = normalizedOrZero((before[0] + before[1] + before[2]) - (now[0] + now[1] + now[2]));
       const TriangleAxes axes(piece, now, before, 0, back);
+      if (round == 0) patch.faceMet[f] = axes.meets() ? 1 : 0;
       const Vec3 move = axes.move(clearance);
       if (move == Vec3{} || !moveFace(patch, face, end.applyToDirection(move))) continue;
+      for (Index v : face) {
+        if (patch.inverseMasses[v] > 0) patch.movedInRound[v] = round;
+      }
       ++counts.facesMoved;
       changed = true;
     }
     for (Index v = 0; v < vertexCount; ++v) {
-      if (!(patch.inverseMasses[v] > 0) || (round > 0 && patch.moved[v] != 2)) continue;
+      if (!(patch.inverseMasses[v] > 0) || (round > 0 && patch.movedInRound[v] != round)) continue;
       Vec3 local;
       const NodeVerdict verdict =
           judgeNode(piece, motion, poses, patch.startPositions[v], patch.positions[v], clearance, local);
@@ -318,23 +330,26 @@ SeparationCounts separateFromPiece(const ToolModel& piece, const PieceMotion& mo
       const Plane& plane = piece.planes[verdict.plane];
       const Vec3 corrected = local + plane.normal * (clearance - plane.signedDistance(local));
       patch.positions[v] = end.apply(corrected);
-      patch.moved[v] = 2;
+      patch.moved[v] = 1;
+      patch.movedInRound[v] = round;
       patch.directions[v] = end.applyToDirection(plane.normal);
       ++counts.nodesMoved;
       changed = true;
     }
-    for (Index v = 0; v < vertexCount; ++v) {
-      if (patch.moved[v] == 2) patch.moved[v] = 1;
-    }
     if (!changed) break;
   }
 
-  // What is left, measured as the judge would: half the clearance forgives rounding.
+  // What is left, measured as the judge would: half the clearance forgives rounding. A face that
+  // met nothing in the first round, none of whose nodes moved since, still meets nothing.
   const Real tolerance = clearance / 2;
+  // A movable node the first round judged and left, and nothing moved since, is outside.
   for (Index v = 0; v < vertexCount; ++v) {
+    if (patch.movedInRound[v] < 0 && patch.inverseMasses[v] > 0) continue;
     if (outsideDistance(piece.planes, end.applyInverse(patch.positions[v])) < -tolerance) ++counts.nodesInside;
   }
-  for (const std::array<Index, 3>& face : patch.faces) {
+  for (std::size_t f = 0; f < patch.faces.size(); ++f) {
+    const std::array<Index, 3>& face = patch.faces[f];
+    if (patch.faceMet[f] == 0 && !touched(face, 0)) continue;
     Vec3 now[3];
     for (int k = 0; k < 3; ++k) now[k] = end.applyInverse(patch.positions[face[k]]);
     if (TriangleAxes(piece, now, nullptr, tolerance).meets()) ++counts.facesPierced;

@@ -47,15 +47,24 @@ class SoftBodySolver : public btDefaultSoftBodySolver {
   bool separate(Tool& tool);
   SeparationCounts separatePiece(Tool& tool, const ToolModel& piece, const PieceMotion& motion, btSoftBody& softBody);
 
-  // Soft node -> its faces (CSR), per soft body, rebuilt when its node or face count changes.
-  struct FaceAdjacency {
+  // What the gather keeps per soft body. The faces of each node (CSR), rebuilt when the body's
+  // node or face count changes. And a bound on how far a face's box (its nodes at the start and
+  // the end of the step) reaches from any of its nodes: a face whose box meets the piece's reach
+  // has every node within that bound of it, so the gather looks at the faces of the nodes near
+  // the reach grown by it, never at all the faces. The bound is measured exactly, then grown
+  // each step by twice the farthest any node moved, and measured again once it has doubled.
+  struct SoftBodyCache {
     const btSoftBody* softBody = nullptr;
     Index nodeCount = kInvalidIndex;
     Index faceCount = kInvalidIndex;
     std::vector<Index> begin;
     std::vector<Index> faces;
+    Real faceReach = 0;
+    Real measuredReach = -1;  // at the last exact measure; negative: never measured
+    int stepSeen = -1;
   };
-  const FaceAdjacency& adjacencyOf(const btSoftBody& softBody);
+  SoftBodyCache& cacheOf(const btSoftBody& softBody);
+  void updateFaceReach(SoftBodyCache& cache, const btSoftBody& softBody);
 
   static constexpr int kMostPasses = 4;
   static constexpr int kMostExtensions = 4;
@@ -67,7 +76,9 @@ class SoftBodySolver : public btDefaultSoftBodySolver {
   std::vector<Index> m_vertexOfNode;  // soft node -> patch vertex, kInvalidIndex when absent
   std::vector<unsigned char> m_faceInPatch;  // soft face -> whether the patch has it
   std::vector<Index> m_patchFaces;           // the soft faces the patch has
-  std::vector<FaceAdjacency> m_adjacency;
+  std::vector<SoftBodyCache> m_caches;
+  std::vector<Index> m_nearNodes;  // soft nodes near the piece's reach grown by the face reach
+  int m_step = 0;
 };
 
 }  // namespace thintool

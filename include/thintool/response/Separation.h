@@ -60,6 +60,10 @@ struct SeparationPatch {
   /// contact normal the glue needs to make the node's velocity agree with the move.
   std::vector<unsigned char> moved;
   std::vector<Vec3> directions;
+  /// Scratch of the stage: the round that last moved each vertex (-1: none), and which faces met
+  /// the piece in the first round.
+  std::vector<int> movedInRound;
+  std::vector<unsigned char> faceMet;
 
   Index vertexCount() const { return static_cast<Index>(positions.size()); }
   Index addVertex(Index id, const Vec3& start, const Vec3& end, Real inverseMass) {
@@ -79,6 +83,8 @@ struct SeparationPatch {
     nodeIds.clear();
     moved.clear();
     directions.clear();
+    movedInRound.clear();
+    faceMet.clear();
   }
 };
 
