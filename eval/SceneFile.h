@@ -138,7 +138,7 @@ struct SceneSpec {
   AlgorithmKind algorithm = AlgorithmKind::Swept;
   bool force = false;          ///< ThinTool: the Hunt–Crossley force (force error needs it)
   bool friction = false;       ///< ThinTool: Coulomb friction at the tool
-  bool lastWord = true;        ///< ThinTool: the last word after the soft solver (ToolOptions::separation)
+  bool lastWord = true;        ///< ThinTool: the last word after the soft solver (ToolOptions::separation); "paper" and "ray-only" never have it
 };
 
 /// An override applied to the file's JSON before it is read: path=value, the path in dots and

@@ -239,6 +239,8 @@ SoftBallScene::SoftBallScene(const SceneSettings& settings) : m_settings(setting
   if (thinTool) {
     thintool::ToolOptions options = settings.toolOptions;
     options.swept = options.swept && settings.algorithm == Algorithm::ThinTool;
+    // The paper's algorithm as published has no last word (ToolOptions::paper()).
+    options.separation.enabled = options.separation.enabled && settings.algorithm == Algorithm::ThinTool;
     try {
       m_thinTool = &thintool::addTool(*m_world, *m_tool, options);
     } catch (...) {

@@ -31,7 +31,7 @@ enum class Algorithm {
   StockA,    ///< stock defaults: margin 0.25, kKHR 0.1, 1 position iteration, SDF voxel 0.25
   StockB,    ///< A tuned: kKHR 1, 10 position iterations
   StockE,    ///< B with a realistic skin: margin 0.05, SDF voxel 0.02
-  ThinToolPaper,  ///< E's soft settings, the tool registered with ThinTool's discrete detection (the paper)
+  ThinToolPaper,  ///< E's soft settings, the tool registered with the paper's algorithm as published (ToolOptions::paper())
   ThinTool,       ///< E's soft settings, the tool registered with ThinTool's defaults (swept detection)
 };
 const char* algorithmName(Algorithm algorithm);
@@ -63,7 +63,7 @@ struct SceneSettings {
   bool exactBallHull = false;
   double settleSeconds = 2;
   int substeps = 1;  ///< internal steps per timeStep: stepSimulation(timeStep, substeps, timeStep / substeps)
-  thintool::ToolOptions toolOptions;  ///< used when algorithm is ThinTool; ThinToolPaper sets swept = false
+  thintool::ToolOptions toolOptions;  ///< used when algorithm is ThinTool; ThinToolPaper turns swept and separation off
   double toolThickness = 0.02;  ///< m, along the tool's y axis (0 makes a tool of zero thickness)
   /// Where the scene is built (m): ground, ball and parked tool are placed relative to it.
   /// Coordinates far from 0 cost float precision.

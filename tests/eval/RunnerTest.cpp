@@ -42,8 +42,7 @@ TEST(Runner, ThePlatePressTellsStockFromSwept) {
 }
 
 TEST(Runner, TheSheetIsPiercedByThePaperAndCaughtBySweptDetection) {
-  // The paper's detection alone: the last word would catch what it misses.
-  const RunResult paper = run("sheet_pierce.json", {"algorithm=paper", "thintool.last_word=false"});
+  const RunResult paper = run("sheet_pierce.json", {"algorithm=paper"});
   const RunResult swept = run("sheet_pierce.json", {"algorithm=swept"});
   EXPECT_GT(paper.truth.crossedNodes, 0);
   EXPECT_GT(paper.truth.stillCrossed, 0);

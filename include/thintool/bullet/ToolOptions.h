@@ -44,10 +44,12 @@ struct ToolOptions {
   /// The tissue's force on the tool (force/ContactForce.h): off by default.
   ForceSettings force;
 
-  /// The paper's algorithm as published: discrete rays, association, both checks.
+  /// The paper's algorithm as published: discrete rays, association, both checks, and no last
+  /// word after the soft solver (set separation.enabled for the paper's detection with it).
   static ToolOptions paper() {
     ToolOptions options;
     options.swept = false;
+    options.separation.enabled = false;
     return options;
   }
   /// The paper's Fig. 7 (right) ablation: discrete rays only, without association and both checks.
