@@ -275,7 +275,12 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
   // as velocity, as Bullet's position solve would, turns every correction of the solver's overlap
   // into a kick away from the tool.
   const Real inverseStep = Real(softBody.m_sst.isdt);
-  btRigidBody* dynamicTool = tool.body().isStaticOrKinematicObject() ? nullptr : &tool.body();
+  // A dynamic tool takes the moved nodes' reaction, unless the force model is what reacts on it
+  // (ForceSettings::applyToDynamicTool), as for the collision stage's own moves.
+  const ForceSettings& force = tool.m_options.force;
+  btRigidBody* dynamicTool = tool.body().isStaticOrKinematicObject() || (force.enabled && force.applyToDynamicTool)
+                                 ? nullptr
+                                 : &tool.body();
   bool movedAny = false;
   for (Index v = 0; v < m_patch.vertexCount(); ++v) {
     const Index id = m_patch.nodeIds[v];

@@ -16,8 +16,9 @@
 /// solver has the last word on where a node ends the step. This one runs Bullet's own solve
 /// unchanged, then, for every tool of the configuration whose ToolOptions::separation is enabled,
 /// puts every soft node and face near the tool back on its side (response/Separation.h) and sets
-/// the moved nodes' velocities as Bullet's solve does, v = (x − x_start)·(1 − kDP)/dt. A dynamic
-/// tool receives the moved nodes' reaction as impulses. Soft bodies that ignore the tool
+/// a moved node's velocity along its move to the faster of its own and the tool's (no bounce). A
+/// dynamic tool receives the moved nodes' reaction as impulses, unless its force model already
+/// reacts on it (ForceSettings::applyToDynamicTool). Soft bodies that ignore the tool
 /// (m_collisionDisabledObjects) are left alone. Tool::report() says what the stage did and what
 /// it left (ToolDiagnostics::lastWord).
 
