@@ -72,7 +72,7 @@ struct ResponseSettings {
   /// surface motion in the soft solver too (its hold is not frictionless), and the soft bodies
   /// the tool touches get a contact pass after the links in each of their position iterations
   /// (btSoftBody::m_cfg.m_psequence), so that the links of a grasped body do not drag the held
-  /// nodes along the jaws.
+  /// nodes along the jaws. A dynamic tool's soft bodies get the pass too (see ToolAlgorithm.cpp).
   FrictionSettings friction;
 };
 
