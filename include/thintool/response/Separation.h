@@ -13,19 +13,24 @@
 /// the piece's face normals, the triangle's normal, and the cross products of their edges).
 /// Deviations, and why:
 /// - A node's side is read from its own path, not from the nearest face: its straight move from
-///   the start of the step to where the solver left it, seen from the piece as the piece moves
-///   along its arc (rotation interpolated about one axis, sampled every `maxTurnPerSample`). A node
-///   inside the piece leaves through the face its path entered by; a node whose path went in by
-///   one face and out by a face turned away from it (it was carried through) goes back in front
-///   of the face it entered by. The nearest face would send a node that crossed more than half
+///   the start of the step to where the solver left it, seen from the piece (a turning piece on
+///   its arc, the rotation interpolated about one axis and sampled every `maxTurnPerSample`). A
+///   node inside the piece leaves through the face its path entered by; a node whose path went in
+///   by one face and out by a face turned away from it (carried through) goes back in front of
+///   the face it entered by, and under a turn only when both readings of the path, straight in
+///   the piece's frame and straight in the world against the arc, take it through (either alone
+///   is wrong for some node: the first for one the turning piece never reached, the second for
+///   one that rode on its face). The nearest face would send a node that crossed more than half
 ///   the piece's thickness out of the far side.
-/// - A pierced face moves by the shortest translation that clears the piece along one of the
-///   separating-axis candidates (the piece's face normals, the triangle's normal, the cross
-///   products of their edges), choosing only among the directions on whose side the triangle was
-///   at the start of the step: a needle's tip in a face's interior pushes the face along the axis
-///   it came in by, a rim slicing a coarse face pushes it off the rim, outward, and a plate that went
-///   more than half through a face in one step still pushes it out the side it came from. When the
-///   triangle already met the piece at the start, the shortest translation of all.
+/// - A face must keep a side it had at the start of the step: some separating axis (the piece's
+///   face normals, the triangle's normal, the cross products of their edges) separates it from
+///   the piece on the same side at both ends. One that does not (pierced, or gone through a thin
+///   piece between its nodes) is translated back to such a side along the axis that best trades
+///   the move's length against how well it points back the way the face came, length /
+///   (0.1 + cos): the shortest move alone lets two faces that share an edge along a needle push it
+///   to opposite sides round after round. A face that already met the piece at the start goes back
+///   along its own motion relative to the piece, as far as it takes; without such a motion, to the
+///   side it was nearest to.
 /// - Face moves and node moves alternate (Gauss–Seidel) for at most `maxRounds`, nodes last; what
 ///   is still violated then is counted, never hidden.
 
