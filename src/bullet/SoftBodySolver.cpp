@@ -120,7 +120,12 @@ SoftBodySolver::SoftBodyCache& SoftBodySolver::cacheOf(const btSoftBody& softBod
   const auto faceCount = static_cast<Index>(softBody.m_faces.size());
   if (m_faceInPatch.size() < faceCount) m_faceInPatch.resize(faceCount, 0);
   if (m_vertexOfNode.size() < nodeCount) m_vertexOfNode.resize(nodeCount, kInvalidIndex);
-  if (cache.nodeCount != nodeCount || cache.faceCount != faceCount) {
+  const void* nodes = nodeCount > 0 ? static_cast<const void*>(&softBody.m_nodes[0]) : nullptr;
+  const void* faceArray = faceCount > 0 ? static_cast<const void*>(&softBody.m_faces[0]) : nullptr;
+  if (cache.nodeCount != nodeCount || cache.faceCount != faceCount || cache.nodes != nodes ||
+      cache.faceArray != faceArray) {
+    cache.nodes = nodes;
+    cache.faceArray = faceArray;
     // Built when the body's topology is new to the solver or has changed (refine, cut): never in
     // a step that only moves nodes.
     cache.nodeCount = nodeCount;

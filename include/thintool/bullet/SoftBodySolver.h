@@ -58,6 +58,10 @@ class SoftBodySolver : public btDefaultSoftBodySolver {
     const btSoftBody* softBody = nullptr;
     Index nodeCount = kInvalidIndex;
     Index faceCount = kInvalidIndex;
+    // Where the body's node and face arrays were: a body deleted and another made at the same
+    // address, or arrays grown in place of others, are not taken for the same topology.
+    const void* nodes = nullptr;
+    const void* faceArray = nullptr;
     std::vector<Index> begin;
     std::vector<Index> faces;
     Real faceReach = 0;
