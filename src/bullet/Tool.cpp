@@ -180,11 +180,7 @@ const ToolStepReport& Tool::report() {
       }
       // Inside a convex piece, the depth is the distance to the nearest face plane.
       const Vec3 local = piecePose.applyInverse(point);
-      Real outside = -std::numeric_limits<Real>::max();
-      for (const Plane& plane : model.planes) {
-        outside = std::max(outside, plane.signedDistance(local));
-      }
-      const Real penetration = -outside;
+      const Real penetration = -outsideDistance(model.planes, local);
       if (penetration > diagnostics.maxRemainingPenetration) {
         diagnostics.maxRemainingPenetration = penetration;
       }

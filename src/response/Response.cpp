@@ -15,19 +15,6 @@ namespace {
 // a node the projection put on that surface, give or take rounding.
 constexpr Real kOnGrownSurface = 1e-9;
 
-// The smallest signed distance outside the piece's planes: positive outside, negative inside.
-Real outsideDistance(const ToolModel& model, const Vec3& local, Index* outPlane = nullptr) {
-  Real best = -std::numeric_limits<Real>::max();
-  for (Index p = 0; p < model.planes.size(); ++p) {
-    const Real distance = model.planes[p].signedDistance(local);
-    if (distance > best) {
-      best = distance;
-      if (outPlane != nullptr) *outPlane = p;
-    }
-  }
-  return best;
-}
-
 // How far a node now at position lies inside the tool grown by the skin, measured from the face
 // it was outside of at the start of the step (at previousPosition, in the tool's previous pose),
 // with that face's normal in the world: the move that sends it back out the side it came from.
@@ -35,11 +22,11 @@ Real outsideDistance(const ToolModel& model, const Vec3& local, Index* outPlane 
 Real depthBehindEntryFace(const ToolModel& model, const Pose& toolPose, const Pose& previousToolPose,
                           const Vec3& previousPosition, const Vec3& position, Real skin, Vec3& outNormal) {
   const Vec3 local = toolPose.applyInverse(position);
-  if (outsideDistance(model, local) >= skin) {
+  if (outsideDistance(model.planes, local) >= skin) {
     return 0;
   }
   Index entry = 0;
-  outsideDistance(model, previousToolPose.applyInverse(previousPosition), &entry);
+  outsideDistance(model.planes, previousToolPose.applyInverse(previousPosition), &entry);
   outNormal = toolPose.applyToDirection(model.planes[entry].normal);
   return skin - model.planes[entry].signedDistance(local);
 }
@@ -56,7 +43,7 @@ Index planeMovedThrough(const ToolModel& model, const Vec3& start, const Vec3& e
   if (!path.hit) {
     return kInvalidIndex;
   }
-  const Real grow = std::min(skin, outsideDistance(model, start) / 2);
+  const Real grow = std::min(skin, outsideDistance(model.planes, start) / 2);
   if (!(grow > 0)) {
     return kInvalidIndex;
   }
@@ -161,7 +148,7 @@ void computeResponse(const ToolModel& model, const Pose& toolPose, const Pose& p
           continue;
         }
         if (contact.kind == ContactKind::ToolRay &&
-            outsideDistance(model, toolPose.applyInverse(patch.positions[vertex])) >= skin) {
+            outsideDistance(model.planes, toolPose.applyInverse(patch.positions[vertex])) >= skin) {
           continue;  // beside the tool: the hit point's pass moves its face
         }
         NodeCorrection& correction = slotOf(vertex);
@@ -246,8 +233,8 @@ void computeResponse(const ToolModel& model, const Pose& toolPose, const Pose& p
       const Vec3 startLocal = previousToolPose.applyInverse(patch.previousPositions[vertex]);
       const Vec3 endLocal = toolPose.applyInverse(work.m_positions[vertex]);
       Index entry = kInvalidIndex;
-      if (outsideDistance(model, endLocal, &entry) < skin) {
-        outsideDistance(model, startLocal, &entry);
+      if (outsideDistance(model.planes, endLocal, &entry) < skin) {
+        outsideDistance(model.planes, startLocal, &entry);
       } else if (model.planes[entry].signedDistance(startLocal) > skin) {
         entry = kInvalidIndex;  // in front of the same face all along: the path misses the tool
       } else {
