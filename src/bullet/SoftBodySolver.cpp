@@ -17,15 +17,6 @@ namespace thintool {
 
 namespace {
 
-Aabb worldBounds(const Aabb& local, const Pose& pose) {
-  Aabb box;
-  for (int corner = 0; corner < 8; ++corner) {
-    box.include(pose.apply({(corner & 1) ? local.max.x : local.min.x, (corner & 2) ? local.max.y : local.min.y,
-                            (corner & 4) ? local.max.z : local.min.z}));
-  }
-  return box;
-}
-
 // Everything the piece can reach during the step: its boxes at the arc's samples, grown by how far
 // a point of the piece strays from the straight line between two samples, r·(1 − cos(θ/2)) for a
 // point r from the body's origin and a turn θ between samples.
@@ -38,7 +29,7 @@ Aabb sweptBounds(const Aabb& local, const PieceMotion& motion) {
     radius = std::max(radius, length(motion.start().apply(p) - motion.bodyStart().translation));
   }
   for (int k = 0; k <= motion.samples(); ++k) {
-    box.include(worldBounds(local, motion.at(Real(k) / Real(motion.samples()))));
+    box.include(transformedBounds(local, motion.at(Real(k) / Real(motion.samples()))));
   }
   return box.expanded(radius * (1 - std::cos(motion.turn() / (2 * motion.samples()))));
 }

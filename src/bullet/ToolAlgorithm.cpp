@@ -30,16 +30,6 @@ double microsecondsBetween(Clock::time_point a, Clock::time_point b) {
   return std::chrono::duration<double, std::micro>(b - a).count();
 }
 
-Aabb worldBounds(const Aabb& local, const Pose& pose) {
-  Aabb box;
-  for (int corner = 0; corner < 8; ++corner) {
-    const Vec3 p{(corner & 1) ? local.max.x : local.min.x, (corner & 2) ? local.max.y : local.min.y,
-                 (corner & 4) ? local.max.z : local.min.z};
-    box.include(pose.apply(p));
-  }
-  return box;
-}
-
 // A contact with every field set, for resizing the soft body's list: Bullet leaves some of
 // RContact's vectors unset, and resize() copies its fill value into each new slot.
 const btSoftBody::RContact& blankContact() {
@@ -282,9 +272,9 @@ void ToolAlgorithm::processValidPiece(PairState& state, btSoftBody& softBody, co
   }
 
   const Real skin = options.skin >= 0 ? options.skin : Real(softBody.getCollisionShape()->getMargin());
-  Aabb reach = worldBounds(model.bounds, pose);
+  Aabb reach = transformedBounds(model.bounds, pose);
   if (swept) {
-    reach.include(worldBounds(model.bounds, previousPose));
+    reach.include(transformedBounds(model.bounds, previousPose));
   }
   // Swept: the faces that meet the tool's whole motion during theirs, looked for first twice as far
   // out as the soft nodes near the tool moved last step (the solver's pull adds to the motion), or

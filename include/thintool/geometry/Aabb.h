@@ -38,6 +38,16 @@ struct Aabb {
   }
 };
 
+/// The world box of a box given in a frame placed at pose: the box round its eight corners.
+inline Aabb transformedBounds(const Aabb& local, const Pose& pose) {
+  Aabb box;
+  for (int corner = 0; corner < 8; ++corner) {
+    box.include(pose.apply({(corner & 1) ? local.max.x : local.min.x, (corner & 2) ? local.max.y : local.min.y,
+                            (corner & 4) ? local.max.z : local.min.z}));
+  }
+  return box;
+}
+
 /// Precomputed reciprocal of a segment's delta for repeated slab tests against boxes.
 struct SegmentSlab {
   Vec3 origin;
