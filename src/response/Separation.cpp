@@ -109,6 +109,11 @@ NodeVerdict judgeNode(const ToolModel& piece, const PieceMotion& motion, const P
 // points back the way the triangle came (`back`, its motion relative to the piece reversed),
 // cost / (kAlignmentFloor + cos). The shortest move alone lets two faces that share an edge along
 // a needle push that edge to opposite sides, round after round; the way back agrees for both.
+// A face that still meets the piece goes straight back along `back` instead, until it clears,
+// when that is shorter than the chosen side's move: without it a face whose only side at the start
+// lay across a long piece was sent along the piece's length, tens of centimetres in one step. Not
+// by score: the way back of a face jittering against a held plate points anywhere, and taking it
+// there fed the jitter (a held dense ball's kinetic energy doubled).
 class TriangleAxes {
  public:
   TriangleAxes(const ToolModel& piece, const Vec3* end, const Vec3* start, Real tolerance, const Vec3& back = {})
@@ -131,13 +136,18 @@ class TriangleAxes {
   bool meets() const { return m_meets; }
   /// Some axis separates the triangle from the piece on one side at the start and at the end.
   bool keptItsSide() const { return m_kept; }
-  /// The move (piece frame) that puts the triangle back on a side it had at the start, clearance
-  /// included; with no such side, the shortest move that clears the piece. Zero when none is due.
+  /// The move (piece frame) that puts the triangle back on a side it had at the start, or straight
+  /// back the way it came out of the piece when that is shorter, clearance included; with neither,
+  /// the move to the side it was nearest to at the start. Zero when none is due.
   Vec3 move(Real clearance) const {
     if (m_kept) return {};
-    if (m_bestConsistent < std::numeric_limits<Real>::max()) return m_consistentDirection * (m_bestConsistent + clearance);
+    const bool canRewind = m_meets && m_rewind < std::numeric_limits<Real>::max();
+    const bool rewindIsShorter = canRewind && m_rewind < m_bestConsistent;
+    if (m_bestConsistent < std::numeric_limits<Real>::max() && !rewindIsShorter) {
+      return m_consistentDirection * (m_bestConsistent + clearance);
+    }
+    if (canRewind) return m_back * (m_rewind + clearance);
     if (!m_meets) return {};
-    if (m_rewind < std::numeric_limits<Real>::max()) return m_back * (m_rewind + clearance);
     return m_anyDirection * (m_bestAny + clearance);
   }
 
