@@ -5,6 +5,7 @@
 #include <thintool/geometry/Ccd.h>
 
 #include <algorithm>
+#include <array>
 #include <limits>
 
 namespace thintool {
@@ -51,6 +52,51 @@ Index planeMovedThrough(const ToolModel& model, const Vec3& start, const Vec3& e
     path = clipSegmentConvex(model.planes, grow, start, end);
   }
   return path.hit && path.leavePlane != kInvalidIndex ? path.enterPlane : kInvalidIndex;
+}
+
+// How far each of a contact's nodes moves along its normal so that the contact point, their
+// barycentric mix, moves depth: in proportion to weight × inverse mass, the smallest mass-weighted
+// move. Beside a pinned node, though, no node moves further than the point itself: a point there
+// (weight 0.01 on the free node) would need its free node moved a hundred times its depth, a kick
+// of metres in a step. Nodes at that bound move depth and the others share what is left; the
+// point may then move less than depth, and the last word answers for the rest. False when no node
+// can move.
+bool shareContactMove(const Contact& contact, const std::vector<Real>& inverseMasses, Real depth,
+                      std::array<Real, 3>& outShares) {
+  std::array<bool, 3> atBound{};
+  bool pinned = false;
+  for (Index k = 0; k < contact.softNodeCount; ++k) pinned = pinned || !(inverseMasses[contact.patchVertices[k]] > 0);
+  const Real most = pinned ? depth : std::numeric_limits<Real>::max();
+  bool any = false;
+  for (int round = 0; round < 3; ++round) {
+    Real left = depth;
+    Real weightedMobility = 0;
+    for (Index k = 0; k < contact.softNodeCount; ++k) {
+      if (atBound[k]) {
+        left -= contact.barycentric[k] * depth;
+      } else {
+        weightedMobility += contact.barycentric[k] * contact.barycentric[k] * inverseMasses[contact.patchVertices[k]];
+      }
+    }
+    bool capped = false;
+    for (Index k = 0; k < contact.softNodeCount; ++k) {
+      if (atBound[k]) {
+        outShares[k] = depth;
+        continue;
+      }
+      const Real mobility = contact.barycentric[k] * inverseMasses[contact.patchVertices[k]];
+      outShares[k] = weightedMobility > 0 && left > 0 ? left * mobility / weightedMobility : 0;
+      if (outShares[k] > most) {
+        atBound[k] = true;
+        capped = true;
+      }
+    }
+    any = false;
+    for (Index k = 0; k < contact.softNodeCount; ++k) any = any || outShares[k] > 0;
+    if (!capped) break;
+  }
+  for (Index k = 0; k < contact.softNodeCount; ++k) outShares[k] = std::min(outShares[k], most);
+  return any;
 }
 
 // Friction for each moved node (FrictionSettings). The tool's surface motion at a node is that of
@@ -184,28 +230,25 @@ void computeResponse(const ToolModel& model, const Pose& toolPose, const Pose& p
       work.m_largestShare[slot] = std::numeric_limits<Real>::max();
     }
 
-    // Pass 3: every contact's soft point onto its plane, the move shared by weight × inverse mass.
+    // Pass 3: every contact's soft point onto its plane (shareContactMove).
     constexpr int kSweeps = 4;
     constexpr Real kSettled = 1e-6;  // m
     for (int sweep = 0; sweep < kSweeps; ++sweep) {
       Real worst = 0;
       for (const Contact& contact : contacts) {
         Vec3 point;
-        Real weightedMobility = 0;
         for (Index k = 0; k < contact.softNodeCount; ++k) {
-          const Index vertex = contact.patchVertices[k];
-          point += positionOf(vertex) * contact.barycentric[k];
-          weightedMobility += contact.barycentric[k] * contact.barycentric[k] * patch.inverseMasses[vertex];
+          point += positionOf(contact.patchVertices[k]) * contact.barycentric[k];
         }
-        const Real distance = distanceOf(contact, point);
-        if (distance >= 0 || !(weightedMobility > 0)) {
+        const Real depth = -distanceOf(contact, point);
+        std::array<Real, 3> shares{};
+        if (!(depth > 0) || !shareContactMove(contact, patch.inverseMasses, depth, shares)) {
           continue;
         }
-        worst = std::max(worst, -distance);
-        const Real scale = -distance / weightedMobility;
+        worst = std::max(worst, depth);
         for (Index k = 0; k < contact.softNodeCount; ++k) {
           const Index vertex = contact.patchVertices[k];
-          const Real share = scale * contact.barycentric[k] * patch.inverseMasses[vertex];
+          const Real share = shares[k];
           if (!(share > 0)) {
             continue;
           }

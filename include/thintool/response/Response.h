@@ -17,8 +17,10 @@
 ///   3. each contact moves the point where its ray met the soft face onto its entry plane; the
 ///      move is shared by the face's nodes in proportion to barycentric weight × inverse mass, the
 ///      smallest mass-weighted move that does it, so a needle pressing the middle of a large face
-///      moves the face and a node far from the hit point moves little. Contacts are swept in order
-///      (Gauss–Seidel) until every hit point is out;
+///      moves the face and a node far from the hit point moves little; but beside a pinned node no
+///      node moves further than the point itself, which then moves only part of the way, rather
+///      than fling the free node a hundred times the depth.
+///      Contacts are swept in order (Gauss–Seidel) until every hit point is out, or four times;
 ///   4. no move may end inside the tool: pass 3 moves a face's nodes along the face's normal, which
 ///      near a rim can carry one into the tool from a side no contact speaks for; such a node
 ///      leaves through the face it was outside of at the start of the step, as in pass 2;
