@@ -341,7 +341,10 @@ void ToolAlgorithm::processValidPiece(PairState& state, btSoftBody& softBody, co
   if (options.response.kind == ResponseKind::Constraint && options.response.holdInSolver) {
     computeHolds(model, pose, previousPose, state.patch, skin, state.corrections, swept, m_tool.m_responseWorkspace,
                  state.holds);
-    if (options.response.friction.enabled || dynamicTool(toolBody) != nullptr) {
+    // Only once the response has moved a node: the pass also changes how the body's other
+    // contacts are solved (a pressure body on the ground shook at twice stock's speed), which a
+    // tool merely near the body must not do.
+    if (!state.corrections.empty() && (options.response.friction.enabled || dynamicTool(toolBody) != nullptr)) {
       makeContactsLast(softBody);
     }
   }
