@@ -17,7 +17,7 @@ std::string format(const char* pattern, double a, double b = 0) {
 
 }  // namespace
 
-Verdict judge(const RunResult& run) {
+Verdict judge(const RunResult& run, double controlNodeSpeed) {
   Verdict verdict;
   const GroundTruthRun& truth = run.truth;
   if (truth.crossedNodes > 0) {
@@ -42,12 +42,28 @@ Verdict judge(const RunResult& run) {
     verdict.reasons.push_back(format("non-finite node after %.0f steps", double(run.samples.size())));
   }
   const double limit = kEnergySpeedFactor * std::max(run.peakToolSpeed, 1.0) + kEnergySpeedSlack;
-  if (run.peakNodeSpeed > limit) {
+  if (run.peakNodeSpeed > limit && run.peakNodeSpeed > kEnergyControlFactor * controlNodeSpeed) {
     verdict.energy = true;
-    verdict.reasons.push_back(format("energy: a node at %.3g m/s, the tool at %.3g m/s", run.peakNodeSpeed,
-                                     run.peakToolSpeed));
+    std::string reason = format("energy: a node at %.3g m/s, the tool at %.3g m/s", run.peakNodeSpeed, run.peakToolSpeed);
+    if (controlNodeSpeed > 0) reason += format(", %.3g m/s without the tool", controlNodeSpeed);
+    verdict.reasons.push_back(reason);
   }
   verdict.failed = !verdict.reasons.empty();
+  return verdict;
+}
+
+double controlNodeSpeed(const SceneSpec& scene) {
+  SceneSpec control = scene;
+  control.tools.clear();
+  return runScene(control).peakNodeSpeed;
+}
+
+Verdict runAndJudge(const SceneSpec& scene, const RunOptions& options, RunResult* run) {
+  RunResult local;
+  RunResult& result = run != nullptr ? *run : local;
+  result = runScene(scene, options);
+  Verdict verdict = judge(result);
+  if (verdict.energy) verdict = judge(result, controlNodeSpeed(scene));
   return verdict;
 }
 

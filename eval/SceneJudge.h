@@ -13,7 +13,10 @@
 /// - deep: a surface sample lay deeper than kDeepPenetration inside a tool;
 /// - non-finite: a soft node's position became NaN or infinite (the run stops there);
 /// - energy: a soft node moved faster than kEnergySpeedFactor × max(the fastest tool point,
-///   1 m/s) + kEnergySpeedSlack in some step: the tool put in more than it could, an explosion;
+///   1 m/s) + kEnergySpeedSlack in some step, and more than kEnergyControlFactor times as fast as
+///   in the same scene run without its tools (the control, run only when the first test fails):
+///   the tool put in more than it could, an explosion. Without the control, Bullet's own pressure
+///   shaking a light body on the ground counted against a tool that never touched it;
 /// - refused: ThinTool refused the scene (thintool::Error), with its message.
 
 #include "Runner.h"
@@ -32,6 +35,10 @@ inline constexpr double kDeepPenetration = 1e-4;
 inline constexpr double kEnergySpeedFactor = 20;
 inline constexpr double kEnergySpeedSlack = 20;  ///< m/s
 
+/// The energy check's control: a node may move this many times as fast as in the scene without
+/// its tools, whatever the tool's speed.
+inline constexpr double kEnergyControlFactor = 2;
+
 struct Verdict {
   bool failed = false;
   std::vector<std::string> reasons;  ///< one short text per failed check, with its number
@@ -45,7 +52,16 @@ struct Verdict {
   bool refused = false;
 };
 
-Verdict judge(const RunResult& run);
+/// controlNodeSpeed: the peak node speed of the scene run without its tools (m/s), or 0 when not
+/// measured (controlNodeSpeed below).
+Verdict judge(const RunResult& run, double controlNodeSpeed = 0);
+
+/// The energy check's control: the scene's peak node speed without its tools (m/s).
+double controlNodeSpeed(const SceneSpec& scene);
+
+/// Runs the scene and judges it, with the control run when the energy check asks for it. run, when
+/// not null, receives the run.
+Verdict runAndJudge(const SceneSpec& scene, const RunOptions& options = {}, RunResult* run = nullptr);
 /// A scene ThinTool would not run: a failure with its message.
 Verdict refusedVerdict(const std::string& message);
 

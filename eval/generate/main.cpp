@@ -135,9 +135,9 @@ int main(int argc, char** argv) {
           std::printf("settled: the soft body spans heights %.4f to %.4f m\n", bottom, top);
         };
       }
-      const RunResult run = runScene(scene, options);
+      RunResult run;
+      verdict = runAndJudge(scene, options, &run);
       if (verbose) printSteps(run);
-      verdict = judge(run);
     } catch (const thintool::Error& e) {
       verdict = refusedVerdict(e.what());
     }

@@ -43,7 +43,7 @@ Outcome runSeed(std::uint64_t seed) {
   try {
     const SceneSpec scene = generateScene(seed, kScenes);
     outcome.description = describeScene(scene);
-    outcome.verdict = judge(runScene(scene));
+    outcome.verdict = runAndJudge(scene);
   } catch (const Error& e) {
     outcome.verdict = refusedVerdict(e.what());
   }
