@@ -238,18 +238,31 @@ class TriangleAxes {
 
 // Moves a face by `move` (world) at its centroid: each node by its share of inverse mass, the
 // smallest mass-weighted change that moves the centroid that far (a plain translation when the
-// masses are equal). False when every node is pinned.
-bool moveFace(SeparationPatch& patch, const std::array<Index, 3>& face, const Vec3& move) {
+// masses are equal). A node that would then be further from where the solver left it than its
+// place at the start of the step, carried along with the piece, goes there instead, with the
+// face's other nodes: the face as it was beside the piece then. Rounds of faces that share nodes
+// otherwise add up, and moved nodes of a pinned sheet half a metre in a step (generated seed
+// 877). False when every node is pinned.
+bool moveFace(SeparationPatch& patch, const std::array<Index, 3>& face, const Vec3& move, const PieceMotion& motion) {
   Real weights = 0;
   for (Index v : face) weights += patch.inverseMasses[v];
   if (!(weights > 0)) return false;
+  const auto carried = [&](Index v) { return motion.end().apply(motion.start().applyInverse(patch.startPositions[v])); };
+  bool beyondCarried = false;
+  for (Index v : face) {
+    if (!(patch.inverseMasses[v] > 0)) continue;
+    const Vec3 target = patch.positions[v] + move * (3 * patch.inverseMasses[v] / weights);
+    const Vec3& solved = patch.solvedPositions[v];
+    beyondCarried = beyondCarried || lengthSquared(target - solved) > lengthSquared(carried(v) - solved);
+  }
   const Vec3 direction = normalizedOrZero(move);
   for (Index v : face) {
-    if (patch.inverseMasses[v] > 0) {
-      patch.positions[v] += move * (3 * patch.inverseMasses[v] / weights);
-      patch.moved[v] = 1;
-      patch.directions[v] = direction;
-    }
+    if (!(patch.inverseMasses[v] > 0)) continue;
+    const Vec3 target = beyondCarried ? carried(v) : patch.positions[v] + move * (3 * patch.inverseMasses[v] / weights);
+    const Vec3 step = target - patch.positions[v];
+    patch.positions[v] = target;
+    patch.moved[v] = 1;
+    patch.directions[v] = beyondCarried ? normalizedOrZero(step) : direction;
   }
   return true;
 }
@@ -324,7 +337,7 @@ SeparationCounts separateFromPiece(const ToolModel& piece, const PieceMotion& mo
       const TriangleAxes axes(piece, now, before, 0, back);
       if (round == 0) patch.faceMet[f] = axes.meets() ? 1 : 0;
       const Vec3 move = axes.move(clearance);
-      if (move == Vec3{} || !moveFace(patch, face, end.applyToDirection(move))) continue;
+      if (move == Vec3{} || !moveFace(patch, face, end.applyToDirection(move), motion)) continue;
       for (Index v : face) {
         if (patch.inverseMasses[v] > 0) patch.movedInRound[v] = round;
       }

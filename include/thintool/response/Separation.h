@@ -33,6 +33,10 @@
 ///   move: a face whose only side at the start lay across a long needle went along the needle's
 ///   length. A face that already met the piece at the start goes back that way; without such a
 ///   motion, to the side it was nearest to.
+/// - A face move that would take one of its nodes further from where the solver left it than the
+///   node's place at the start of the step, carried along with the piece, puts the face there
+///   instead: as it was beside the piece then. Faces that share nodes otherwise add their rounds'
+///   moves up, half a metre in a step on a pinned sheet.
 /// - Face moves and node moves alternate (Gauss–Seidel) for at most `maxRounds`, nodes last; what
 ///   is still violated then is counted, never hidden.
 
@@ -60,6 +64,7 @@ struct SeparationSettings {
 struct SeparationPatch {
   std::vector<Vec3> positions;       ///< where the solver left each node; corrected in place
   std::vector<Vec3> startPositions;  ///< where each node began the step
+  std::vector<Vec3> solvedPositions;  ///< where the solver left each node (positions before the stage)
   std::vector<Real> inverseMasses;   ///< 0: pinned, never moved
   std::vector<std::array<Index, 3>> faces;  ///< patch vertex indices
   std::vector<Index> nodeIds;        ///< the caller's ids, one per vertex
@@ -76,6 +81,7 @@ struct SeparationPatch {
   Index addVertex(Index id, const Vec3& start, const Vec3& end, Real inverseMass) {
     nodeIds.push_back(id);
     startPositions.push_back(start);
+    solvedPositions.push_back(end);
     positions.push_back(end);
     inverseMasses.push_back(inverseMass);
     moved.push_back(0);
@@ -85,6 +91,7 @@ struct SeparationPatch {
   void clear() {
     positions.clear();
     startPositions.clear();
+    solvedPositions.clear();
     inverseMasses.clear();
     faces.clear();
     nodeIds.clear();
