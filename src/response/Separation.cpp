@@ -238,11 +238,11 @@ class TriangleAxes {
 
 // Moves a face by `move` (world) at its centroid: each node by its share of inverse mass, the
 // smallest mass-weighted change that moves the centroid that far (a plain translation when the
-// masses are equal). A node that would then be further from where the solver left it than its
-// place at the start of the step, carried along with the piece, goes there instead, with the
-// face's other nodes: the face as it was beside the piece then. Rounds of faces that share nodes
-// otherwise add up, and moved nodes of a pinned sheet half a metre in a step (generated seed
-// 877). False when every node is pinned.
+// masses are equal). Rounds of faces that share nodes add their moves up, to half a metre in a
+// step on a pinned sheet (generated seed 877): a node that would end further from where the solver
+// left it than both its place at the start of the step, carried along with the piece, and this
+// move's own length goes to that place instead, with the face's other nodes (the face as it was
+// beside the piece then). False when every node is pinned.
 bool moveFace(SeparationPatch& patch, const std::array<Index, 3>& face, const Vec3& move, const PieceMotion& motion) {
   Real weights = 0;
   for (Index v : face) weights += patch.inverseMasses[v];
@@ -251,9 +251,10 @@ bool moveFace(SeparationPatch& patch, const std::array<Index, 3>& face, const Ve
   bool beyondCarried = false;
   for (Index v : face) {
     if (!(patch.inverseMasses[v] > 0)) continue;
-    const Vec3 target = patch.positions[v] + move * (3 * patch.inverseMasses[v] / weights);
+    const Vec3 share = move * (3 * patch.inverseMasses[v] / weights);
     const Vec3& solved = patch.solvedPositions[v];
-    beyondCarried = beyondCarried || lengthSquared(target - solved) > lengthSquared(carried(v) - solved);
+    const Real limit = std::max(lengthSquared(carried(v) - solved), lengthSquared(share));
+    beyondCarried = beyondCarried || lengthSquared(patch.positions[v] + share - solved) > limit;
   }
   const Vec3 direction = normalizedOrZero(move);
   for (Index v : face) {

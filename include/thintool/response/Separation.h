@@ -33,10 +33,10 @@
 ///   move: a face whose only side at the start lay across a long needle went along the needle's
 ///   length. A face that already met the piece at the start goes back that way; without such a
 ///   motion, to the side it was nearest to.
-/// - A face move that would take one of its nodes further from where the solver left it than the
-///   node's place at the start of the step, carried along with the piece, puts the face there
-///   instead: as it was beside the piece then. Faces that share nodes otherwise add their rounds'
-///   moves up, half a metre in a step on a pinned sheet.
+/// - A face move that would take one of its nodes further from where the solver left it than both
+///   the node's place at the start of the step, carried along with the piece, and the move's own
+///   length puts the face there instead: as it was beside the piece then. Faces that share nodes
+///   otherwise add their rounds' moves up, half a metre in a step on a pinned sheet.
 /// - Face moves and node moves alternate (Gauss–Seidel) for at most `maxRounds`, nodes last; what
 ///   is still violated then is counted, never hidden.
 
