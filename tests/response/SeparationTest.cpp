@@ -195,5 +195,24 @@ TEST(Separation, SettingsAreValidated) {
   EXPECT_FALSE(validateSeparationSettings(bad).empty());
 }
 
+TEST(Separation, NoFaceMoveTakesANodePastItsPlaceCarriedWithThePiece) {
+  // A face that fell from above the plate into it, which an earlier round (another face sharing
+  // its nodes) has already pushed half a metre aside. Put back above the plate from there, its
+  // nodes would end half a metre from where the solver left them; its place at the start is 3 cm
+  // away, and it goes there.
+  const ToolModel piece = plate();
+  Patch p;
+  const Vec3 start[3] = {{-0.05, 0.03, -0.05}, {0.05, 0.03, -0.05}, {0, 0.03, 0.05}};
+  Index v[3];
+  for (int k = 0; k < 3; ++k) v[k] = p.node(start[k], start[k] - Vec3{0, 0.03, 0});
+  p.patch.faces.push_back({v[0], v[1], v[2]});
+  for (Index vertex : v) p.patch.positions[vertex] += Vec3{0.5, 0, 0};
+  separateFromPiece(piece, PieceMotion(Pose{}, Pose{}, 0.1), {}, p.patch);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(length(p.patch.positions[v[k]] - start[k]), 0, 1e-12) << "node " << k;
+    EXPECT_EQ(p.patch.moved[v[k]], 1);
+  }
+}
+
 }  // namespace
 }  // namespace thintool
