@@ -338,17 +338,17 @@ void ToolAlgorithm::processValidPiece(PairState& state, btSoftBody& softBody, co
       state.lastPositions[patch.nodeIds[v]] = patch.positions[v] + correction.displacement;
     }
   }
+  btRigidBody* dynamicBody = dynamicTool(toolBody);
   if (options.response.kind == ResponseKind::Constraint && options.response.holdInSolver) {
     computeHolds(model, pose, previousPose, state.patch, skin, state.corrections, swept, m_tool.m_responseWorkspace,
                  state.holds);
     // Only once the response has moved a node: the pass also changes how the body's other
     // contacts are solved (a pressure body on the ground shook at twice stock's speed), which a
     // tool merely near the body must not do.
-    if (!state.corrections.empty() && (options.response.friction.enabled || dynamicTool(toolBody) != nullptr)) {
+    if (!state.corrections.empty() && (options.response.friction.enabled || dynamicBody != nullptr)) {
       makeContactsLast(softBody);
     }
   }
-  btRigidBody* dynamicBody = dynamicTool(toolBody);
   const bool forceReacts = options.force.enabled && options.force.applyToDynamicTool;
   const Real moved = applyResponse(state, softBody, forceReacts ? nullptr : dynamicBody, timeStep);
   if (pass != nullptr) {

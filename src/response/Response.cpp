@@ -67,7 +67,6 @@ bool shareContactMove(const Contact& contact, const std::vector<Real>& inverseMa
   bool pinned = false;
   for (Index k = 0; k < contact.softNodeCount; ++k) pinned = pinned || !(inverseMasses[contact.patchVertices[k]] > 0);
   const Real most = pinned ? depth : std::numeric_limits<Real>::max();
-  bool any = false;
   for (int round = 0; round < 3; ++round) {
     Real left = depth;
     Real weightedMobility = 0;
@@ -91,11 +90,13 @@ bool shareContactMove(const Contact& contact, const std::vector<Real>& inverseMa
         capped = true;
       }
     }
-    any = false;
-    for (Index k = 0; k < contact.softNodeCount; ++k) any = any || outShares[k] > 0;
     if (!capped) break;
   }
-  for (Index k = 0; k < contact.softNodeCount; ++k) outShares[k] = std::min(outShares[k], most);
+  bool any = false;
+  for (Index k = 0; k < contact.softNodeCount; ++k) {
+    outShares[k] = std::min(outShares[k], most);
+    any = any || outShares[k] > 0;
+  }
   return any;
 }
 

@@ -247,23 +247,27 @@ bool moveFace(SeparationPatch& patch, const std::array<Index, 3>& face, const Ve
   Real weights = 0;
   for (Index v : face) weights += patch.inverseMasses[v];
   if (!(weights > 0)) return false;
-  const auto carried = [&](Index v) { return motion.end().apply(motion.start().applyInverse(patch.startPositions[v])); };
+  std::array<Vec3, 3> moved;
+  std::array<Vec3, 3> carried;
   bool beyondCarried = false;
-  for (Index v : face) {
+  for (int k = 0; k < 3; ++k) {
+    const Index v = face[k];
     if (!(patch.inverseMasses[v] > 0)) continue;
     const Vec3 share = move * (3 * patch.inverseMasses[v] / weights);
     const Vec3& solved = patch.solvedPositions[v];
-    const Real limit = std::max(lengthSquared(carried(v) - solved), lengthSquared(share));
-    beyondCarried = beyondCarried || lengthSquared(patch.positions[v] + share - solved) > limit;
+    moved[k] = patch.positions[v] + share;
+    carried[k] = motion.end().apply(motion.start().applyInverse(patch.startPositions[v]));
+    beyondCarried = beyondCarried || lengthSquared(moved[k] - solved) >
+                                         std::max(lengthSquared(carried[k] - solved), lengthSquared(share));
   }
   const Vec3 direction = normalizedOrZero(move);
-  for (Index v : face) {
+  for (int k = 0; k < 3; ++k) {
+    const Index v = face[k];
     if (!(patch.inverseMasses[v] > 0)) continue;
-    const Vec3 target = beyondCarried ? carried(v) : patch.positions[v] + move * (3 * patch.inverseMasses[v] / weights);
-    const Vec3 step = target - patch.positions[v];
+    const Vec3& target = beyondCarried ? carried[k] : moved[k];
+    patch.directions[v] = beyondCarried ? normalizedOrZero(target - patch.positions[v]) : direction;
     patch.positions[v] = target;
     patch.moved[v] = 1;
-    patch.directions[v] = beyondCarried ? normalizedOrZero(step) : direction;
   }
   return true;
 }

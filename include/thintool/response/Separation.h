@@ -62,7 +62,7 @@ struct SeparationSettings {
 
 /// The soft features near one tool piece, in the world frame, gathered by the glue.
 struct SeparationPatch {
-  std::vector<Vec3> positions;       ///< where the solver left each node; corrected in place
+  std::vector<Vec3> positions;       ///< where each node is: the solver's place, corrected in place
   std::vector<Vec3> startPositions;  ///< where each node began the step
   std::vector<Vec3> solvedPositions;  ///< where the solver left each node (positions before the stage)
   std::vector<Real> inverseMasses;   ///< 0: pinned, never moved
