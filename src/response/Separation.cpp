@@ -110,10 +110,10 @@ NodeVerdict judgeNode(const ToolModel& piece, const PieceMotion& motion, const P
 // cost / (kAlignmentFloor + cos). The shortest move alone lets two faces that share an edge along
 // a needle push that edge to opposite sides, round after round; the way back agrees for both.
 // A face that still meets the piece goes straight back along `back` instead, until it clears,
-// when that is shorter than the chosen side's move: without it a face whose only side at the start
-// lay across a long piece was sent along the piece's length, tens of centimetres in one step. Not
-// by score: the way back of a face jittering against a held plate points anywhere, and taking it
-// there fed the jitter (a held dense ball's kinetic energy doubled).
+// when that is shorter than the chosen side's move, so that a face whose only side at the start
+// lies across a long piece is not sent along the piece's length, tens of centimetres in one step.
+// Shorter, not better scored: the way back of a face jittering against a held plate points
+// anywhere, and following it feeds the jitter (a held dense ball's kinetic energy doubles).
 class TriangleAxes {
  public:
   TriangleAxes(const ToolModel& piece, const Vec3* end, const Vec3* start, Real tolerance, const Vec3& back = {})
