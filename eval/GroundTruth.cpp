@@ -305,7 +305,11 @@ std::vector<Pose> GroundTruth::piecePoses(const std::vector<Pose>& toolPoses) co
 }
 
 void GroundTruth::start(const std::vector<Pose>& toolPoses, const std::vector<Vec3>& nodes,
-                        const std::vector<Triangle>& /*faces*/) {
+                        const std::vector<Triangle>& /*faces*/, std::vector<int> pinned) {
+  for (int i : pinned) {
+    if (i < 0 || i >= int(nodes.size())) throw Error("ground truth: a pinned node index is out of range");
+  }
+  m_pinned = std::move(pinned);
   m_previousToolPoses = toolPoses;
   m_previousPoses = piecePoses(toolPoses);
   m_previousNodes = nodes;
@@ -338,8 +342,10 @@ const GroundTruthStep& GroundTruth::update(const std::vector<Pose>& toolPoses, c
   if (nodes.size() != m_previousNodes.size()) throw Error("ground truth: the soft body's node count changed");
   const std::vector<Pose> poses = piecePoses(toolPoses);
   m_step = {};
+  m_step.pinnedReached = m_run.pinnedReachedStep > 0 || reachesPinnedNode(toolPoses, poses, nodes);
+  if (m_step.pinnedReached && m_run.pinnedReachedStep == 0) m_run.pinnedReachedStep = m_run.steps + 1;
 
-  countCrossings(toolPoses, poses, nodes);
+  if (!m_step.pinnedReached) countCrossings(toolPoses, poses, nodes);
 
   for (const Vec3& node : nodes) measurePenetration(node, poses);
   for (const Triangle& f : faces) measurePenetration((nodes[f[0]] + nodes[f[1]] + nodes[f[2]]) / 3.0, poses);
@@ -376,6 +382,13 @@ const GroundTruthStep& GroundTruth::update(const std::vector<Pose>& toolPoses, c
   }
 
   ++m_run.steps;
+  m_previousToolPoses = toolPoses;
+  m_previousPoses = poses;
+  m_previousNodes = nodes;
+  if (m_step.pinnedReached) {
+    ++m_run.unjudgedSteps;
+    return m_step;
+  }
   m_run.toolInsideSteps += m_step.toolInside ? 1 : 0;
   m_run.selfIntersectingSteps += m_step.selfIntersecting ? 1 : 0;
   m_run.endsInside = m_step.toolInside;
@@ -384,66 +397,79 @@ const GroundTruthStep& GroundTruth::update(const std::vector<Pose>& toolPoses, c
   m_run.maxPiercedFaces = std::max(m_run.maxPiercedFaces, m_step.piercedFaces);
   m_sumSquared += m_step.sumSquaredPenetration;
   m_samples += m_step.penetratingSamples;
-  m_previousToolPoses = toolPoses;
-  m_previousPoses = poses;
-  m_previousNodes = nodes;
   return m_step;
+}
+
+// The piece's poses at the ends of the sub-intervals its turn between two steps is followed in:
+// the tool's pose interpolated, then the piece placed on it, so that a piece offset from the tool's
+// origin (a jaw) swings round that origin as the body does. Two poses for a step without a turn.
+void GroundTruth::followArc(std::size_t k, const std::vector<Pose>& toolPoses, const std::vector<Pose>& poses,
+                            std::vector<Pose>& arc) const {
+  const GroundTruthPiece& piece = m_pieces[k];
+  const Pose& toolBefore = m_previousToolPoses[piece.tool];
+  const Pose& toolAfter = toolPoses[piece.tool];
+  const Quaternion turnBefore = quaternionOf(toolBefore.rotation);
+  const Quaternion turnAfter = quaternionOf(toolAfter.rotation);
+  const int intervals = std::max(1, int(std::ceil(turnBetween(turnBefore, turnAfter) / kMaxTurnPerInterval)));
+  arc.assign(std::size_t(intervals) + 1, Pose{});
+  arc.front() = m_previousPoses[k];
+  arc.back() = poses[k];
+  for (int j = 1; j < intervals; ++j) {
+    const double s = double(j) / intervals;
+    Pose tool;
+    tool.rotation = matrixOf(slerp(turnBefore, turnAfter, s));
+    tool.translation = toolBefore.translation + (toolAfter.translation - toolBefore.translation) * s;
+    arc[std::size_t(j)] = tool * piece.inTool;
+  }
+}
+
+// Node i's passage through piece k over the step, 0 or its side before. Straight in the piece's
+// frame, a node that went round did not cross, whatever the arc says; on a turning piece it
+// crossed only when, moving straight in the world, it also passed the piece on its arc.
+int GroundTruth::crossingAlongArc(std::size_t k, std::size_t i, const std::vector<Pose>& arc,
+                                  const Vec3& nodeAfter) const {
+  const SolidDistance& solid = m_pieces[k].solid;
+  const Vec3& nodeBefore = m_previousNodes[i];
+  const int chord = crossingSide(solid, arc.front(), nodeBefore, arc.back(), nodeAfter);
+  const int intervals = int(arc.size()) - 1;
+  if (chord == 0 || intervals == 1) return chord;
+  const Vec3 motion = nodeAfter - nodeBefore;
+  for (int j = 0; j < intervals; ++j) {
+    const Vec3 from = j == 0 ? nodeBefore : nodeBefore + motion * (double(j) / intervals);
+    const Vec3 to = j + 1 == intervals ? nodeAfter : nodeBefore + motion * (double(j + 1) / intervals);
+    const int side = crossingSide(solid, arc[std::size_t(j)], from, arc[std::size_t(j) + 1], to);
+    if (side != 0) return side;
+  }
+  return 0;
+}
+
+bool GroundTruth::reachesPinnedNode(const std::vector<Pose>& toolPoses, const std::vector<Pose>& poses,
+                                    const std::vector<Vec3>& nodes) {
+  for (std::size_t k = 0; k < m_pieces.size(); ++k) {
+    if (!m_pieces[k].immovable) continue;
+    followArc(k, toolPoses, poses, m_arc);
+    for (int i : m_pinned) {
+      const auto node = std::size_t(i);
+      if (m_pieces[k].solid.signedDistance(poses[k].applyInverse(nodes[node])) < 0) return true;
+      if (crossingAlongArc(k, node, m_arc, nodes[node]) != 0) return true;
+    }
+  }
+  return false;
 }
 
 void GroundTruth::countCrossings(const std::vector<Pose>& toolPoses, const std::vector<Pose>& poses,
                                  const std::vector<Vec3>& nodes) {
-  std::vector<Pose> arc;  // a turning piece's poses at the sub-intervals' ends
   for (std::size_t k = 0; k < m_pieces.size(); ++k) {
-    const GroundTruthPiece& piece = m_pieces[k];
-    const Pose& toolBefore = m_previousToolPoses[piece.tool];
-    const Pose& toolAfter = toolPoses[piece.tool];
-    const Quaternion turnBefore = quaternionOf(toolBefore.rotation);
-    const Quaternion turnAfter = quaternionOf(toolAfter.rotation);
-    const int intervals = std::max(1, int(std::ceil(turnBetween(turnBefore, turnAfter) / kMaxTurnPerInterval)));
-
-    if (intervals == 1) {
-      for (std::size_t i = 0; i < nodes.size(); ++i) {
-        const int side = crossingSide(piece.solid, m_previousPoses[k], m_previousNodes[i], poses[k], nodes[i]);
-        if (side == 0) continue;
-        if (m_crossedPiece[i] < 0) {
-          ++m_run.crossedNodes;
-          m_crossedPiece[i] = int(k);
-          m_sideBeforeCrossing[i] = static_cast<signed char>(side);
-        }
-        ++m_step.crossings;
-      }
-      continue;
-    }
-
-    // Along the arc: the tool's pose interpolated, then the piece placed on it, so that a piece
-    // offset from the tool's origin (a jaw) swings round that origin as the body does.
-    arc.assign(std::size_t(intervals) + 1, Pose{});
-    arc.front() = m_previousPoses[k];
-    arc.back() = poses[k];
-    for (int j = 1; j < intervals; ++j) {
-      const double s = double(j) / intervals;
-      Pose tool;
-      tool.rotation = matrixOf(slerp(turnBefore, turnAfter, s));
-      tool.translation = toolBefore.translation + (toolAfter.translation - toolBefore.translation) * s;
-      arc[std::size_t(j)] = tool * piece.inTool;
-    }
+    followArc(k, toolPoses, poses, m_arc);
     for (std::size_t i = 0; i < nodes.size(); ++i) {
-      // Straight in the piece's frame, it went round: not a crossing, whatever the arc says.
-      if (crossingSide(piece.solid, m_previousPoses[k], m_previousNodes[i], poses[k], nodes[i]) == 0) continue;
-      const Vec3 motion = nodes[i] - m_previousNodes[i];
-      for (int j = 0; j < intervals; ++j) {
-        const Vec3 from = j == 0 ? m_previousNodes[i] : m_previousNodes[i] + motion * (double(j) / intervals);
-        const Vec3 to = j + 1 == intervals ? nodes[i] : m_previousNodes[i] + motion * (double(j + 1) / intervals);
-        const int side = crossingSide(piece.solid, arc[std::size_t(j)], from, arc[std::size_t(j) + 1], to);
-        if (side == 0) continue;
-        if (m_crossedPiece[i] < 0) {
-          ++m_run.crossedNodes;
-          m_crossedPiece[i] = int(k);
-          m_sideBeforeCrossing[i] = static_cast<signed char>(side);
-        }
-        ++m_step.crossings;  // once a step, however often the arc passes the node
-        break;
+      const int side = crossingAlongArc(k, i, m_arc, nodes[i]);
+      if (side == 0) continue;
+      if (m_crossedPiece[i] < 0) {
+        ++m_run.crossedNodes;
+        m_crossedPiece[i] = int(k);
+        m_sideBeforeCrossing[i] = static_cast<signed char>(side);
       }
+      ++m_step.crossings;  // once a step, however often the arc passes the node
     }
   }
 }

@@ -104,6 +104,9 @@ struct GroundTruthPiece {
   SolidDistance solid;
   Pose inTool;    ///< the piece's frame relative to the tool body
   int tool = 0;   ///< which of the scene's tools it belongs to
+  /// Whether nothing the soft body does can move it (a kinematic or static tool): then a pinned
+  /// node it reaches is a contact no method can keep, and judging ends there.
+  bool immovable = false;
 };
 
 /// What the ground truth saw after one step.
@@ -112,14 +115,23 @@ struct GroundTruthStep {
   int piercedFaces = 0;       ///< soft faces reaching deeper than the tolerance into a tool at the step's end
   bool toolInside = false;    ///< a piece's centre is inside the closed soft surface, which does not pass through itself
   bool selfIntersecting = false;  ///< the winding number said inside, but the surface passes through itself
+  /// An immovable piece reached a pinned node: it lies inside the piece, or the piece passed it.
+  bool pinnedReached = false;
   double maxPenetration = 0;  ///< m, deepest surface sample inside a tool
   double sumSquaredPenetration = 0;  ///< m², over the penetrating samples
   int penetratingSamples = 0;
 };
 
 /// What it saw over a run.
+///
+/// Neither a pinned node nor an immovable piece can give way, so from the step one reaches the
+/// other no contact method can keep the surface out of the tool: the faces round the node are held
+/// across it. The run counts those steps apart, in unjudgedSteps; the other fields cover the steps
+/// before.
 struct GroundTruthRun {
   int steps = 0;
+  int unjudgedSteps = 0;       ///< steps from the one where an immovable piece reached a pinned node
+  int pinnedReachedStep = 0;   ///< that step (1 = the first), or 0
   int crossedNodes = 0;       ///< distinct nodes that passed through a tool at least once
   int stillCrossed = 0;       ///< of those, at the end on the far side of the first piece they crossed, within it
   int toolInsideSteps = 0;
@@ -145,8 +157,10 @@ class GroundTruth {
   /// tolerance: m, the depth beyond which a face counts as pierced.
   GroundTruth(std::vector<GroundTruthPiece> pieces, bool closedSurface, double tolerance = kDefaultTolerance);
 
-  /// The state before the first step: toolPoses[t] is tool t's body pose.
-  void start(const std::vector<Pose>& toolPoses, const std::vector<Vec3>& nodes, const std::vector<Triangle>& faces);
+  /// The state before the first step: toolPoses[t] is tool t's body pose. pinned: the nodes that
+  /// never move (zero inverse mass), by index.
+  void start(const std::vector<Pose>& toolPoses, const std::vector<Vec3>& nodes, const std::vector<Triangle>& faces,
+             std::vector<int> pinned = {});
   const GroundTruthStep& update(const std::vector<Pose>& toolPoses, const std::vector<Vec3>& nodes,
                                 const std::vector<Triangle>& faces);
   const GroundTruthStep& lastStep() const { return m_step; }
@@ -155,6 +169,11 @@ class GroundTruth {
  private:
   void measurePenetration(const Vec3& world, const std::vector<Pose>& piecePoses);
   void countCrossings(const std::vector<Pose>& toolPoses, const std::vector<Pose>& poses, const std::vector<Vec3>& nodes);
+  int crossingAlongArc(std::size_t piece, std::size_t node, const std::vector<Pose>& arc, const Vec3& nodeAfter) const;
+  void followArc(std::size_t piece, const std::vector<Pose>& toolPoses, const std::vector<Pose>& poses,
+                 std::vector<Pose>& arc) const;
+  bool reachesPinnedNode(const std::vector<Pose>& toolPoses, const std::vector<Pose>& poses,
+                         const std::vector<Vec3>& nodes);
   bool pierces(const Vec3& a, const Vec3& b, const Vec3& c, std::size_t piece, const Pose& pose);
   std::vector<Pose> piecePoses(const std::vector<Pose>& toolPoses) const;
 
@@ -166,6 +185,8 @@ class GroundTruth {
   std::vector<Vec3> m_previousNodes;
   std::vector<int> m_crossedPiece;   // per node: the first piece it went through, or -1
   std::vector<signed char> m_sideBeforeCrossing;  // per node: its side of that piece before
+  std::vector<int> m_pinned;
+  std::vector<Pose> m_arc;  // a piece's poses along its turn, kept to reuse its storage
   GroundTruthStep m_step;
   bool m_wrappedByFold = false;  // the tool is inside since a step whose surface passed through itself
   GroundTruthRun m_run;

@@ -341,7 +341,7 @@ RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
     w.thinTools.push_back(stock ? nullptr : &addTool(world, *w.tools.back(), optionsFor(scene, tool)));
     double reach = 0;
     for (const ToolPieceSpec& piece : tool.pieces) {
-      pieces.push_back({SolidDistance(solidOf(piece)), piece.offset, int(t)});
+      pieces.push_back({SolidDistance(solidOf(piece)), piece.offset, int(t), !dynamic});
       for (const Vec3& v : solidOf(piece).vertices) reach = std::max(reach, length(piece.offset.apply(v)));
     }
     toolReach.push_back(reach);
@@ -433,7 +433,11 @@ RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
     if (scene.tools[t].mass > 0) toolPoses[t] = toPose(w.tools[t]->getWorldTransform());
   }
   std::vector<Vec3> previousNodes = nodesOf(soft);
-  truth.start(toolPoses, previousNodes, faces);
+  std::vector<int> pinned;
+  for (int n = 0; n < soft.m_nodes.size(); ++n) {
+    if (soft.m_nodes[n].m_im == 0) pinned.push_back(n);
+  }
+  truth.start(toolPoses, previousNodes, faces, std::move(pinned));
 
   const int steps = std::max(1, int(std::lround(scene.duration / scene.timeStep)));
   double wall = 0;

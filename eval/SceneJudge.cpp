@@ -49,6 +49,7 @@ Verdict judge(const RunResult& run, double controlNodeSpeed) {
     verdict.reasons.push_back(reason);
   }
   verdict.failed = !verdict.reasons.empty();
+  verdict.pinnedReachedStep = truth.pinnedReachedStep;
   return verdict;
 }
 

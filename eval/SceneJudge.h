@@ -18,6 +18,10 @@
 ///   the tool put in more than it could, an explosion. Without the control, Bullet's own pressure
 ///   shaking a light body on the ground counted against a tool that never touched it;
 /// - refused: ThinTool refused the scene (thintool::Error), with its message.
+///
+/// The geometric checks (crossed, inside, pierced, deep) cover the steps before a kinematic tool
+/// reaches a pinned node, if one does (GroundTruthRun::pinnedReachedStep): from there no method
+/// can keep the surface off the tool. Non-finite and energy cover every step.
 
 #include "Runner.h"
 
@@ -50,6 +54,8 @@ struct Verdict {
   bool nonFinite = false;
   bool energy = false;
   bool refused = false;
+  /// Not a failure: the step from which the geometric checks did not judge, or 0.
+  int pinnedReachedStep = 0;
 };
 
 /// controlNodeSpeed: the peak node speed of the scene run without its tools (m/s), or 0 when not

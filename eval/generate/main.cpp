@@ -71,6 +71,10 @@ void printSteps(const RunResult& run) {
               run.softFaces, run.softNodes, run.truth.crossedNodes, run.truth.toolInsideSteps,
               run.truth.selfIntersectingSteps, run.truth.piercedSteps,
               run.truth.maxPenetration * 1000, run.peakNodeSpeed, run.peakToolSpeed);
+  if (run.truth.pinnedReachedStep > 0) {
+    std::printf("a kinematic tool reached a pinned node in step %d: the geometric checks judged the steps before\n",
+                run.truth.pinnedReachedStep);
+  }
 }
 
 }  // namespace
@@ -121,6 +125,7 @@ int main(int argc, char** argv) {
 
   int failed = 0;
   int crossed = 0, inside = 0, pierced = 0, deep = 0, nonFinite = 0, energy = 0, refused = 0;
+  int cutShort = 0;  // judged up to the step a kinematic tool reached a pinned node
   const auto begin = std::chrono::steady_clock::now();
   for (std::uint64_t seed : seeds) {
     Verdict verdict;
@@ -141,6 +146,7 @@ int main(int argc, char** argv) {
     } catch (const thintool::Error& e) {
       verdict = refusedVerdict(e.what());
     }
+    cutShort += verdict.pinnedReachedStep > 0;
     if (!verdict.failed) continue;
     ++failed;
     crossed += verdict.crossed;
@@ -157,7 +163,7 @@ int main(int argc, char** argv) {
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
   std::printf("%zu scenes, %d failed (crossed %d, inside %d, pierced %d, deep %d, non-finite %d, energy %d, "
-              "refused %d), %.1f s\n",
-              seeds.size(), failed, crossed, inside, pierced, deep, nonFinite, energy, refused, seconds);
+              "refused %d; %d judged up to a pinned node), %.1f s\n",
+              seeds.size(), failed, crossed, inside, pierced, deep, nonFinite, energy, refused, cutShort, seconds);
   return failed > 0 ? 1 : 0;
 }

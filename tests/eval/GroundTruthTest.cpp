@@ -110,6 +110,40 @@ TEST(GroundTruth, ANodeThatCrossedAndCameBackIsNotStillCrossed) {
   EXPECT_EQ(run.stillCrossed, 0);
 }
 
+// Two nodes the plate passes through in its second step; the first is pinned.
+GroundTruthRun passOverAPinnedNode(bool immovablePlate) {
+  std::vector<GroundTruthPiece> pieces;
+  pieces.push_back({SolidDistance(ConvexSolid::box(kPlateHalf)), Pose{}, 0, immovablePlate});
+  GroundTruth truth(std::move(pieces), false);
+  const std::vector<Vec3> nodes{{0.3, 0.5, 0}, {-0.3, 0.5, 0}};
+  truth.start({at(0, 1, 0)}, nodes, {}, {0});
+  truth.update({at(0, 0.8, 0)}, nodes, {});
+  truth.update({at(0, 0.3, 0)}, nodes, {});
+  truth.update({at(0, 0.1, 0)}, nodes, {});
+  return truth.run();
+}
+
+TEST(GroundTruth, AKinematicPlateThatReachesAPinnedNodeEndsTheJudgedSteps) {
+  const GroundTruthRun run = passOverAPinnedNode(true);
+  EXPECT_EQ(run.pinnedReachedStep, 2);
+  EXPECT_EQ(run.unjudgedSteps, 2);
+  EXPECT_EQ(run.steps, 3);
+  EXPECT_EQ(run.crossedNodes, 0);  // the free node crossed in the same step: not judged either
+}
+
+TEST(GroundTruth, APinnedNodeADynamicToolPassesCounts) {
+  // A tool the node can push could have given way: its crossing is a failure like any other.
+  const GroundTruthRun run = passOverAPinnedNode(false);
+  EXPECT_EQ(run.pinnedReachedStep, 0);
+  EXPECT_EQ(run.unjudgedSteps, 0);
+  EXPECT_EQ(run.crossedNodes, 2);
+}
+
+TEST(GroundTruth, PinnedNodeIndicesAreChecked) {
+  GroundTruth truth = plateTruth();
+  EXPECT_THROW(truth.start({at(0, 1, 0)}, {{0, 0.5, 0}}, {}, {1}), Error);
+}
+
 TEST(GroundTruth, PenetrationIsTheDepthOfTheDeepestSampleAndItsRms) {
   GroundTruth truth = plateTruth();
   truth.start({at(0, 0, 0)}, {{0, 0.5, 0}, {0.2, 0.5, 0}, {0, 0.5, 0.1}}, {});
