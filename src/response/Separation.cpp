@@ -272,6 +272,55 @@ bool moveFace(SeparationPatch& patch, const std::array<Index, 3>& face, const Ve
   return true;
 }
 
+// A face with a pinned node cannot translate: shares of a translation move only its free nodes,
+// the part of it by the pinned node stays where it was, and round after round the same move leaves
+// it pierced (generated seed 1969: a sheet's corner face across a plate's rim). Its free nodes go
+// instead just beyond one of the piece's face planes that every pinned node of the face is beyond
+// already, the plane that asks the least total move of them, each along that plane's normal, on a
+// path that stays out of the piece and leaves the node outside every plane it is outside of (round
+// an edge of the piece is where the node's other faces would pierce it: seed 1969's next round).
+// The whole triangle then lies beyond the plane. False when no plane serves: a pinned node in the
+// piece, or a free node inside it, which the node pass moves first.
+bool swingAboutPinnedNodes(SeparationPatch& patch, const std::array<Index, 3>& face, const ToolModel& piece,
+                           const Pose& end, const Vec3 (&local)[3], Real clearance) {
+  const std::vector<Plane>& planes = piece.planes;
+  Index best = kInvalidIndex;
+  Real bestCost = std::numeric_limits<Real>::max();
+  for (Index p = 0; p < static_cast<Index>(planes.size()); ++p) {
+    const Plane& plane = planes[p];
+    Real cost = 0;
+    bool serves = true;
+    for (int k = 0; k < 3 && serves; ++k) {
+      const Real distance = plane.signedDistance(local[k]);
+      if (!(patch.inverseMasses[face[k]] > 0)) {
+        serves = distance >= 0;
+      } else if (distance < clearance) {
+        const Vec3 to = local[k] + plane.normal * (clearance - distance);
+        serves = !clipSegmentConvex(planes, 0, local[k], to).hit;
+        for (const Plane& other : planes) {
+          serves = serves && (other.signedDistance(local[k]) <= 0 || other.signedDistance(to) > 0);
+        }
+        cost += clearance - distance;
+      }
+    }
+    if (serves && cost < bestCost) {
+      bestCost = cost;
+      best = p;
+    }
+  }
+  if (best == kInvalidIndex) return false;
+  const Plane& plane = planes[best];
+  for (int k = 0; k < 3; ++k) {
+    const Index v = face[k];
+    const Real distance = plane.signedDistance(local[k]);
+    if (!(patch.inverseMasses[v] > 0) || distance >= clearance) continue;
+    patch.positions[v] = end.apply(local[k] + plane.normal * (clearance - distance));
+    patch.directions[v] = end.applyToDirection(plane.normal);
+    patch.moved[v] = 1;
+  }
+  return true;
+}
+
 }  // namespace
 
 PieceMotion::PieceMotion(const Pose& bodyStart, const Pose& bodyEnd, Real maxTurnPerSample, const Pose& inBody)
@@ -342,7 +391,16 @@ SeparationCounts separateFromPiece(const ToolModel& piece, const PieceMotion& mo
       const TriangleAxes axes(piece, now, before, 0, back);
       if (round == 0) patch.faceMet[f] = axes.meets() ? 1 : 0;
       const Vec3 move = axes.move(clearance);
-      if (move == Vec3{} || !moveFace(patch, face, end.applyToDirection(move), motion)) continue;
+      if (move == Vec3{}) continue;
+      const bool pinned = !(patch.inverseMasses[face[0]] > 0 && patch.inverseMasses[face[1]] > 0 &&
+                            patch.inverseMasses[face[2]] > 0);
+      // A face whose pinned node passed the piece went round it, not through: it has no side it
+      // could go back to, and it is left alone unless it meets the piece at the end.
+      if (pinned && !axes.meets()) continue;
+      if (!(pinned && swingAboutPinnedNodes(patch, face, piece, end, now, clearance)) &&
+          !moveFace(patch, face, end.applyToDirection(move), motion)) {
+        continue;
+      }
       for (Index v : face) {
         if (patch.inverseMasses[v] > 0) patch.movedInRound[v] = round;
       }

@@ -182,6 +182,28 @@ TEST(Separation, FacesOfMovableNodesShareAPinnedNeighboursMove) {
   EXPECT_FALSE(triangleMeetsPiece(piece, p.patch.positions[a], p.patch.positions[b], p.patch.positions[c], 0));
 }
 
+TEST(Separation, AFaceHangingFromAPinnedNodeAcrossTheRimSwingsBeyondTheRim) {
+  // A sheet's corner face: pinned above the plate and beyond its +z rim, one free node under the
+  // plate, one beside its +x edge. The edge from the free node under the plate up to the pinned
+  // one passes through the plate near the rim.
+  const ToolModel piece = plate();
+  Patch p;
+  const Vec3 corners[3] = {{0.15, -0.012, 0.17}, {0.25, 0.02, 0.17}, {0.15, 0.1, 0.25}};
+  const Index under = p.node(corners[0], corners[0]);
+  const Index beside = p.node(corners[1], corners[1]);
+  const Index pinned = p.node(corners[2], corners[2], 0);
+  p.patch.faces.push_back({under, beside, pinned});
+  ASSERT_TRUE(triangleMeetsPiece(piece, corners[0], corners[1], corners[2], 0));
+  const SeparationCounts counts = separateFromPiece(piece, PieceMotion(Pose{}, Pose{}, 0.1), {}, p.patch);
+  const std::vector<Vec3>& x = p.patch.positions;
+  EXPECT_EQ(counts.facesPierced, 0u);
+  EXPECT_FALSE(triangleMeetsPiece(piece, x[under], x[beside], x[pinned], 0));
+  EXPECT_EQ(x[pinned], corners[2]);
+  // Round the rim, not through the plate: the node under it stays under it.
+  EXPECT_LT(x[under].y, -0.01);
+  EXPECT_GE(x[under].z, 0.2);
+}
+
 TEST(Separation, SettingsAreValidated) {
   EXPECT_TRUE(validateSeparationSettings({}).empty());
   SeparationSettings bad;
