@@ -478,6 +478,8 @@ RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
     const GroundTruthStep& step = truth.update(toolPoses, nodes, faces);
     sample.crossings = step.crossings;
     sample.toolInside = step.toolInside;
+    sample.selfIntersecting = step.selfIntersecting;
+    sample.pinnedReached = step.pinnedReached;
     sample.maxPenetration = step.maxPenetration;
     sample.piercedFaces = step.piercedFaces;
     wall += sample.stepMicroseconds;

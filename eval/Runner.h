@@ -20,6 +20,8 @@ struct StepSample {
   double time = 0;               ///< s after t = 0, at the step's end
   int crossings = 0;
   bool toolInside = false;
+  bool selfIntersecting = false;  ///< inside by the winding number, but the surface passes through itself
+  bool pinnedReached = false;    ///< not judged: a kinematic tool reached a pinned node (GroundTruthRun)
   double maxPenetration = 0;     ///< m
   int piercedFaces = 0;          ///< soft faces deeper than the ground truth's tolerance into a tool
   double nodeSpeed = 0;          ///< m/s, the fastest soft node this step

@@ -63,7 +63,10 @@ void printSteps(const RunResult& run) {
               "node (m/s)");
   for (std::size_t i = 0; i < run.samples.size(); ++i) {
     const StepSample& s = run.samples[i];
-    std::printf("%6zu %9.5f %9d %7s %12.4g %7d %12.4g\n", i + 1, s.time, s.crossings, s.toolInside ? "yes" : "no",
+    // "fold": inside by the winding number, through a surface that passes through itself;
+    // "-": not judged, a kinematic tool reached a pinned node.
+    const char* inside = s.pinnedReached ? "-" : s.toolInside ? "yes" : s.selfIntersecting ? "fold" : "no";
+    std::printf("%6zu %9.5f %9d %7s %12.4g %7d %12.4g\n", i + 1, s.time, s.crossings, inside,
                 s.maxPenetration * 1000, s.piercedFaces, s.nodeSpeed);
   }
   std::printf("faces %d, nodes %d, crossed nodes %d, inside steps %d (and %d with the surface through itself), "
