@@ -118,17 +118,19 @@ class TriangleAxes {
  public:
   TriangleAxes(const ToolModel& piece, const Vec3* end, const Vec3* start, Real tolerance, const Vec3& back = {})
       : m_piece(piece), m_end(end), m_start(start), m_tolerance(tolerance), m_back(back) {
-    const std::vector<Vec3>& corners = m_piece.mesh.vertices;
     for (const Plane& plane : m_piece.planes) {
       if (visit(plane.normal)) return;
     }
-    const Vec3 edges[3] = {end[1] - end[0], end[2] - end[1], end[0] - end[2]};
-    if (visit(cross(edges[0], end[2] - end[0]))) return;
-    for (const auto& edge : m_piece.featureEdges) {
-      const Vec3 direction = corners[edge[1]] - corners[edge[0]];
-      for (const Vec3& e : edges) {
-        if (visit(cross(direction, e))) return;
-      }
+    if (visitTriangleAxes(end)) return;
+    // The triangle's own axes at the start as well: a large face that turns during the step can
+    // be separated at the start only along one of them, and without them it seems to have kept no
+    // side (generated seed 1856: a needle's faces lost their side and let it into the body). They
+    // say whether it kept one, and give the side to go back to only when none of the end's axes
+    // had it at the start: along an axis of the start, a face that turned since can be tens of
+    // centimetres from clearing (seed 1840).
+    if (start != nullptr) {
+      m_keepEndSide = m_bestConsistent < std::numeric_limits<Real>::max();
+      visitTriangleAxes(start);
     }
   }
 
@@ -160,6 +162,20 @@ class TriangleAxes {
       low = std::min(low, p);
       high = std::max(high, p);
     }
+  }
+
+  // The triangle's normal and the cross products of its edges with the piece's.
+  bool visitTriangleAxes(const Vec3* triangle) {
+    const Vec3 edges[3] = {triangle[1] - triangle[0], triangle[2] - triangle[1], triangle[0] - triangle[2]};
+    if (visit(cross(edges[0], triangle[2] - triangle[0]))) return true;
+    const std::vector<Vec3>& corners = m_piece.mesh.vertices;
+    for (const auto& edge : m_piece.featureEdges) {
+      const Vec3 direction = corners[edge[1]] - corners[edge[0]];
+      for (const Vec3& e : edges) {
+        if (visit(cross(direction, e))) return true;
+      }
+    }
+    return false;
   }
 
   // Returns true when nothing more can be learnt: the axis separates the triangle and there is
@@ -209,6 +225,7 @@ class TriangleAxes {
 
   void consider(const Vec3& direction, Real along) {
     if (along <= m_tolerance) m_kept = true;
+    if (m_keepEndSide) return;
     const Real score = along / (kAlignmentFloor + std::max(Real(0), dot(direction, m_back)));
     if (score < m_bestScore) {
       m_bestScore = score;
@@ -225,6 +242,7 @@ class TriangleAxes {
   const Vec3* m_start;
   Real m_tolerance;
   Vec3 m_back;
+  bool m_keepEndSide = false;
   bool m_meets = true;
   bool m_kept = false;
   Real m_bestScore = std::numeric_limits<Real>::max();
@@ -268,6 +286,29 @@ bool moveFace(SeparationPatch& patch, const std::array<Index, 3>& face, const Ve
     patch.directions[v] = beyondCarried ? normalizedOrZero(target - patch.positions[v]) : direction;
     patch.positions[v] = target;
     patch.moved[v] = 1;
+  }
+  return true;
+}
+
+// Whether a face kept a side of a turning piece on its arc: in every sample interval, the face
+// moving straight in the world and the piece at the interval's two poses, some axis separates the
+// two on one side at both ends. Straight in the piece's frame (the chord) a face beside a piece that
+// turns a quarter turn or more seems to keep no side, though the piece never came near it, and
+// went back round, metres in a step (generated seed 30: a blade at 137° a step). A face that ends
+// clear went through only if both readings say so, as for a node (judgeNode).
+bool keptItsSideAlongArc(const ToolModel& piece, const PieceMotion& motion, const Pose* poses,
+                         const SeparationPatch& patch, const std::array<Index, 3>& face) {
+  Vec3 previous[3];
+  for (int k = 0; k < 3; ++k) previous[k] = poses[0].applyInverse(patch.startPositions[face[k]]);
+  for (int sample = 1; sample <= motion.samples(); ++sample) {
+    const Real t = Real(sample) / Real(motion.samples());
+    Vec3 current[3];
+    for (int k = 0; k < 3; ++k) {
+      const Vec3& start = patch.startPositions[face[k]];
+      current[k] = poses[sample].applyInverse(start + (patch.positions[face[k]] - start) * t);
+    }
+    if (!TriangleAxes(piece, current, previous, 0).keptItsSide()) return false;
+    for (int k = 0; k < 3; ++k) previous[k] = current[k];
   }
   return true;
 }
@@ -392,6 +433,9 @@ SeparationCounts separateFromPiece(const ToolModel& piece, const PieceMotion& mo
       if (round == 0) patch.faceMet[f] = axes.meets() ? 1 : 0;
       const Vec3 move = axes.move(clearance);
       if (move == Vec3{}) continue;
+      if (!axes.meets() && motion.samples() > 1 && keptItsSideAlongArc(piece, motion, poses, patch, face)) {
+        continue;
+      }
       const bool pinned = !(patch.inverseMasses[face[0]] > 0 && patch.inverseMasses[face[1]] > 0 &&
                             patch.inverseMasses[face[2]] > 0);
       // A face whose pinned node passed the piece went round it, not through: it has no side it

@@ -80,6 +80,24 @@ TEST(Separation, ATurnSweepsAlongItsArcNotItsChord) {
   EXPECT_LT(p.patch.positions[swept].x, -0.01);
 }
 
+TEST(Separation, AFaceBesideATurningPlateThatNeverReachedItStays) {
+  const ToolModel piece = plate();
+  // The plate turns 120° about y in one step: its corners sweep the disc of radius 0.283 m. A small
+  // upright face 0.35 m out, at the plate's level, stays where it is. In the plate's frame it goes
+  // a third of the way round: on the chord no axis separates it on one side at both ends.
+  Pose end;
+  end.rotation = rotationAboutAxis({0, 1, 0}, 2 * kPi / 3);
+  const PieceMotion motion(Pose{}, end, SeparationSettings{}.maxTurnPerSample);
+  Patch p;
+  const Vec3 corners[3] = {{0.35, -0.1, -0.01}, {0.35, -0.1, 0.01}, {0.35, 0.1, 0}};
+  Index v[3];
+  for (int k = 0; k < 3; ++k) v[k] = p.node(corners[k], corners[k]);
+  p.patch.faces.push_back({v[0], v[1], v[2]});
+  const SeparationCounts counts = separateFromPiece(piece, motion, {}, p.patch);
+  EXPECT_EQ(counts.facesMoved, 0u);
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(p.patch.positions[v[k]], corners[k]) << "node " << k;
+}
+
 TEST(Separation, HalfTurnAxisIsRecovered) {
   Pose end;
   end.rotation = rotationAboutAxis(normalizedOrZero({1, 2, 3}), kPi);
