@@ -362,6 +362,165 @@ bool swingAboutPinnedNodes(SeparationPatch& patch, const std::array<Index, 3>& f
   return true;
 }
 
+// The translations t·direction, for t in (enter, leave), that leave the triangle (piece frame)
+// meeting the piece grown by `grow`; none when enter >= leave. Exact: the separating axes of a
+// triangle that only translates stay the same.
+struct TranslationInterval {
+  Real enter = -std::numeric_limits<Real>::max();
+  Real leave = std::numeric_limits<Real>::max();
+};
+
+TranslationInterval meetingInterval(const ToolModel& piece, const Vec3 (&triangle)[3], const Vec3& direction,
+                                    Real grow) {
+  TranslationInterval meeting;
+  const std::vector<Vec3>& corners = piece.mesh.vertices;
+  const auto narrow = [&](const Vec3& rawAxis) {
+    const Real axisLength = length(rawAxis);
+    if (!(axisLength > Real(1e-12)) || meeting.enter >= meeting.leave) return;
+    const Vec3 axis = rawAxis / axisLength;
+    Real pieceLow = std::numeric_limits<Real>::max();
+    Real pieceHigh = -pieceLow;
+    for (const Vec3& c : corners) {
+      pieceLow = std::min(pieceLow, dot(axis, c));
+      pieceHigh = std::max(pieceHigh, dot(axis, c));
+    }
+    pieceLow -= grow;
+    pieceHigh += grow;
+    Real low = std::numeric_limits<Real>::max();
+    Real high = -low;
+    for (const Vec3& p : triangle) {
+      low = std::min(low, dot(axis, p));
+      high = std::max(high, dot(axis, p));
+    }
+    const Real speed = dot(axis, direction);
+    if (std::abs(speed) < Real(1e-12)) {
+      if (low >= pieceHigh || high <= pieceLow) meeting = {0, 0};
+      return;
+    }
+    Real first = (pieceLow - high) / speed;
+    Real second = (pieceHigh - low) / speed;
+    if (speed < 0) std::swap(first, second);
+    meeting.enter = std::max(meeting.enter, first);
+    meeting.leave = std::min(meeting.leave, second);
+  };
+  for (const Plane& plane : piece.planes) narrow(plane.normal);
+  const Vec3 edges[3] = {triangle[1] - triangle[0], triangle[2] - triangle[1], triangle[0] - triangle[2]};
+  narrow(cross(edges[0], triangle[2] - triangle[0]));
+  for (const auto& edge : piece.featureEdges) {
+    const Vec3 along = corners[edge[1]] - corners[edge[0]];
+    for (const Vec3& e : edges) narrow(cross(along, e));
+  }
+  return meeting;
+}
+
+// The smallest t ≥ 0 that moves the group (patch.inCluster) by t·direction (piece frame) clear of
+// the piece, grown by the clearance: outside the meeting interval of every face all of whose nodes
+// are in the group, and of every node of it.
+Real shortestClearingShift(const ToolModel& piece, const Pose& end, const SeparationPatch& patch,
+                           const Vec3& direction, Real clearance) {
+  Real shift = 0;
+  const auto pass = [&](const TranslationInterval& meeting) {
+    if (!(meeting.enter < shift && shift < meeting.leave)) return false;
+    shift = meeting.leave;
+    return true;
+  };
+  for (bool raised = true; raised;) {
+    raised = false;
+    for (const std::array<Index, 3>& face : patch.faces) {
+      if (patch.inCluster[face[0]] == 0 || patch.inCluster[face[1]] == 0 || patch.inCluster[face[2]] == 0) continue;
+      const Vec3 triangle[3] = {end.applyInverse(patch.positions[face[0]]), end.applyInverse(patch.positions[face[1]]),
+                                end.applyInverse(patch.positions[face[2]])};
+      raised = pass(meetingInterval(piece, triangle, direction, clearance)) || raised;
+    }
+    for (Index v = 0; v < patch.vertexCount(); ++v) {
+      if (patch.inCluster[v] == 0) continue;
+      const Vec3 point = end.applyInverse(patch.positions[v]);
+      const Vec3 node[3] = {point, point, point};
+      raised = pass(meetingInterval(piece, node, direction, clearance)) || raised;
+    }
+  }
+  return shift;
+}
+
+// When the rounds run out with faces still pierced, their movable nodes move together, by one
+// translation that clears every face among them and leaves each of the nodes outside: faces that
+// want a shared node on opposite sides (the fan of faces round a node a needle runs through,
+// generated seed 225) then move as one, the way none of them alone can. The translation is the
+// shortest along the piece's face normals and the faces' way back (shortestClearingShift); it
+// must not take a node through the piece since the step's start (judgeNode), and a face with only
+// some of its nodes in the group must come clear too, else its nodes join the group and the search
+// runs again. Nothing moves when no translation serves.
+void moveStuckFacesTogether(const ToolModel& piece, const PieceMotion& motion, const Pose* poses, Real clearance,
+                            SeparationPatch& patch) {
+  constexpr int kMostGrowths = 8;
+  const Pose& end = motion.end();
+  const Index vertexCount = patch.vertexCount();
+  patch.inCluster.assign(vertexCount, 0);
+  const auto shifted = [&](const std::array<Index, 3>& face, Vec3 (&out)[3], const Vec3& shift) {
+    for (int k = 0; k < 3; ++k) {
+      out[k] = end.applyInverse(patch.positions[face[k]]) + (patch.inCluster[face[k]] != 0 ? shift : Vec3{});
+    }
+  };
+  const auto join = [&](const std::array<Index, 3>& face) {
+    bool grew = false;
+    for (Index v : face) {
+      if (patch.inverseMasses[v] > 0 && patch.inCluster[v] == 0) {
+        patch.inCluster[v] = 1;
+        grew = true;
+      }
+    }
+    return grew;
+  };
+  Vec3 back;
+  for (const std::array<Index, 3>& face : patch.faces) {
+    Vec3 now[3];
+    shifted(face, now, {});
+    if (!TriangleAxes(piece, now, nullptr, 0).meets()) continue;
+    join(face);
+    for (int k = 0; k < 3; ++k) back += motion.start().applyInverse(patch.startPositions[face[k]]) - now[k];
+  }
+  back = normalizedOrZero(back);
+
+  for (int growth = 0; growth < kMostGrowths; ++growth) {
+    Real bestShift = std::numeric_limits<Real>::max();
+    Vec3 bestDirection;
+    for (std::size_t candidate = 0; candidate <= piece.planes.size(); ++candidate) {
+      const Vec3 direction = candidate < piece.planes.size() ? piece.planes[candidate].normal : back;
+      if (direction == Vec3{}) continue;
+      const Real shift = shortestClearingShift(piece, end, patch, direction, clearance);
+      if (!(shift < bestShift)) continue;
+      bool through = false;
+      for (Index v = 0; v < vertexCount && !through; ++v) {
+        if (patch.inCluster[v] == 0) continue;
+        Vec3 ignored;
+        const Vec3 moved = patch.positions[v] + end.applyToDirection(direction * shift);
+        through = judgeNode(piece, motion, poses, patch.startPositions[v], moved, clearance, ignored).fix;
+      }
+      if (through) continue;
+      bestShift = shift;
+      bestDirection = direction;
+    }
+    if (bestShift == std::numeric_limits<Real>::max()) return;
+    const Vec3 shift = bestDirection * bestShift;
+    bool grew = false;
+    for (const std::array<Index, 3>& face : patch.faces) {
+      if (patch.inCluster[face[0]] == 0 && patch.inCluster[face[1]] == 0 && patch.inCluster[face[2]] == 0) continue;
+      Vec3 moved[3];
+      shifted(face, moved, shift);
+      if (TriangleAxes(piece, moved, nullptr, 0).meets()) grew = join(face) || grew;
+    }
+    if (grew) continue;
+    for (Index v = 0; v < vertexCount; ++v) {
+      if (patch.inCluster[v] == 0) continue;
+      patch.positions[v] += end.applyToDirection(shift);
+      patch.directions[v] = end.applyToDirection(bestDirection);
+      patch.moved[v] = 1;
+      patch.movedInRound[v] = std::max(patch.movedInRound[v], 0);
+    }
+    return;
+  }
+}
+
 }  // namespace
 
 PieceMotion::PieceMotion(const Pose& bodyStart, const Pose& bodyEnd, Real maxTurnPerSample, const Pose& inBody)
@@ -467,6 +626,7 @@ SeparationCounts separateFromPiece(const ToolModel& piece, const PieceMotion& mo
       changed = true;
     }
     if (!changed) break;
+    if (round + 1 == std::max(1, settings.maxRounds)) moveStuckFacesTogether(piece, motion, poses, clearance, patch);
   }
 
   // What is left, measured as the judge would: half the clearance forgives rounding. A face that

@@ -222,6 +222,27 @@ TEST(Separation, AFaceHangingFromAPinnedNodeAcrossTheRimSwingsBeyondTheRim) {
   EXPECT_GE(x[under].z, 0.2);
 }
 
+TEST(Separation, FacesThatWantASharedNodeOnOppositeSidesMoveTogether) {
+  // Two faces in the needle's plane, one either side of it, sharing the node in the needle: each
+  // clears by going its own way, taking the node along, and one round leaves one of them pierced.
+  // Moved together when the rounds run out, both clear.
+  const ToolModel piece = needle();
+  Patch p;
+  const Vec3 corners[5] = {{0, 0, 0}, {0.05, 0, 0.1}, {-0.05, 0, 0.1}, {0.05, 0, -0.1}, {-0.05, 0, -0.1}};
+  Index v[5];
+  for (int k = 0; k < 5; ++k) v[k] = p.node(corners[k], corners[k]);
+  p.patch.faces.push_back({v[0], v[1], v[2]});
+  p.patch.faces.push_back({v[0], v[4], v[3]});
+  SeparationSettings oneRound;
+  oneRound.maxRounds = 1;
+  const SeparationCounts counts = separateFromPiece(piece, PieceMotion(Pose{}, Pose{}, 0.1), oneRound, p.patch);
+  EXPECT_EQ(counts.facesPierced, 0u);
+  EXPECT_EQ(counts.nodesInside, 0u);
+  for (const std::array<Index, 3>& f : p.patch.faces) {
+    EXPECT_FALSE(triangleMeetsPiece(piece, p.patch.positions[f[0]], p.patch.positions[f[1]], p.patch.positions[f[2]], 0));
+  }
+}
+
 TEST(Separation, SettingsAreValidated) {
   EXPECT_TRUE(validateSeparationSettings({}).empty());
   SeparationSettings bad;

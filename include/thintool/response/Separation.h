@@ -23,8 +23,9 @@
 ///   one that rode on its face). The nearest face would send a node that crossed more than half
 ///   the piece's thickness out of the far side.
 /// - A face must keep a side it had at the start of the step: some separating axis (the piece's
-///   face normals, the triangle's normal, the cross products of their edges) separates it from
-///   the piece on the same side at both ends. One that does not (pierced, or gone through a thin
+///   face normals, the triangle's normal at either end, the cross products of their edges)
+///   separates it from the piece on the same side at both ends; under a turn, a face that ends
+///   clear must also have kept one in every sample of the arc, else the piece never reached it. One that does not (pierced, or gone through a thin
 ///   piece between its nodes) is translated back to such a side along the axis that best trades
 ///   the move's length against how well it points back the way the face came, length /
 ///   (0.1 + cos): the shortest move alone lets two faces that share an edge along a needle push it
@@ -37,8 +38,12 @@
 ///   the node's place at the start of the step, carried along with the piece, and the move's own
 ///   length puts the face there instead: as it was beside the piece then. Faces that share nodes
 ///   otherwise add their rounds' moves up, half a metre in a step on a pinned sheet.
-/// - Face moves and node moves alternate (Gauss–Seidel) for at most `maxRounds`, nodes last; what
-///   is still violated then is counted, never hidden.
+/// - A face with a pinned node cannot translate: its free nodes go beyond a face plane of the
+///   piece that its pinned nodes are beyond.
+/// - Face moves and node moves alternate (Gauss–Seidel) for at most `maxRounds`, nodes last. When
+///   the rounds run out with faces still pierced (faces that want a shared node on opposite
+///   sides), their nodes move together by the shortest translation that clears them all. What is
+///   still violated then is counted, never hidden.
 
 #include <thintool/tool/ToolModel.h>
 
@@ -76,6 +81,8 @@ struct SeparationPatch {
   /// the piece in the first round.
   std::vector<int> movedInRound;
   std::vector<unsigned char> faceMet;
+  /// Scratch of the stage: the vertices moved together when the rounds leave faces pierced.
+  std::vector<unsigned char> inCluster;
 
   Index vertexCount() const { return static_cast<Index>(positions.size()); }
   Index addVertex(Index id, const Vec3& start, const Vec3& end, Real inverseMass) {
@@ -99,6 +106,7 @@ struct SeparationPatch {
     directions.clear();
     movedInRound.clear();
     faceMet.clear();
+    inCluster.clear();
   }
 };
 
