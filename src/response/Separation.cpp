@@ -413,12 +413,12 @@ TranslationInterval meetingInterval(const ToolModel& piece, const Vec3 (&triangl
   return meeting;
 }
 
-// The smallest t ≥ 0 that moves the group (patch.inCluster) by t·direction (piece frame) clear of
+// The smallest t ≥ least that moves the group (patch.inCluster) by t·direction (piece frame) clear of
 // the piece, grown by the clearance: outside the meeting interval of every face all of whose nodes
 // are in the group, and of every node of it.
 Real shortestClearingShift(const ToolModel& piece, const Pose& end, const SeparationPatch& patch,
-                           const Vec3& direction, Real clearance) {
-  Real shift = 0;
+                           const Vec3& direction, Real clearance, Real least) {
+  Real shift = least;
   const auto pass = [&](const TranslationInterval& meeting) {
     if (!(meeting.enter < shift && shift < meeting.leave)) return false;
     shift = meeting.leave;
@@ -442,6 +442,48 @@ Real shortestClearingShift(const ToolModel& piece, const Pose& end, const Separa
   return shift;
 }
 
+// Along the normal of one of the piece's face planes, the shift that takes the group's nodes of
+// each face with a pinned node beyond that plane, when its pinned nodes are beyond it already: the
+// group swings such a face clear as swingAboutPinnedNodes does one face.
+Real swingShift(const Plane& plane, const Pose& end, const SeparationPatch& patch, Real clearance) {
+  Real shift = 0;
+  for (const std::array<Index, 3>& face : patch.faces) {
+    bool pinnedBeyond = true;
+    bool pinned = false;
+    bool grouped = false;
+    for (Index v : face) {
+      const bool isPinned = !(patch.inverseMasses[v] > 0);
+      pinned = pinned || isPinned;
+      grouped = grouped || patch.inCluster[v] != 0;
+      if (isPinned) pinnedBeyond = pinnedBeyond && plane.signedDistance(end.applyInverse(patch.positions[v])) >= 0;
+    }
+    if (!pinned || !grouped || !pinnedBeyond) continue;
+    for (Index v : face) {
+      if (patch.inCluster[v] == 0) continue;
+      shift = std::max(shift, clearance - plane.signedDistance(end.applyInverse(patch.positions[v])));
+    }
+  }
+  return shift;
+}
+
+// How many faces with a pinned node and a node in the group still meet the piece once the group
+// has moved by `shift` (piece frame): no growth of the group can clear them.
+int heldFaces(const ToolModel& piece, const Pose& end, const SeparationPatch& patch, const Vec3& shift) {
+  int held = 0;
+  for (const std::array<Index, 3>& face : patch.faces) {
+    const bool pinned = !(patch.inverseMasses[face[0]] > 0 && patch.inverseMasses[face[1]] > 0 &&
+                          patch.inverseMasses[face[2]] > 0);
+    if (!pinned) continue;
+    if (patch.inCluster[face[0]] == 0 && patch.inCluster[face[1]] == 0 && patch.inCluster[face[2]] == 0) continue;
+    Vec3 moved[3];
+    for (int k = 0; k < 3; ++k) {
+      moved[k] = end.applyInverse(patch.positions[face[k]]) + (patch.inCluster[face[k]] != 0 ? shift : Vec3{});
+    }
+    held += TriangleAxes(piece, moved, nullptr, 0).meets() ? 1 : 0;
+  }
+  return held;
+}
+
 // When the rounds run out with faces still pierced, their movable nodes move together, by one
 // translation that clears every face among them and leaves each of the nodes outside: faces that
 // want a shared node on opposite sides (the fan of faces round a node a needle runs through,
@@ -449,7 +491,10 @@ Real shortestClearingShift(const ToolModel& piece, const Pose& end, const Separa
 // shortest along the piece's face normals and the faces' way back (shortestClearingShift); it
 // must not take a node through the piece since the step's start (judgeNode), and a face with only
 // some of its nodes in the group must come clear too, else its nodes join the group and the search
-// runs again. Nothing moves when no translation serves.
+// runs again. A face with a pinned node comes clear only beyond a plane its pinned node is beyond
+// (swingShift), and the direction that leaves fewest of those pierced (heldFaces) goes first: on
+// pinned sheets, the shortest translation left the corner faces across the tool (seed 1804).
+// Nothing moves when no translation serves.
 void moveStuckFacesTogether(const ToolModel& piece, const PieceMotion& motion, const Pose* poses, Real clearance,
                             SeparationPatch& patch) {
   constexpr int kMostGrowths = 8;
@@ -484,11 +529,15 @@ void moveStuckFacesTogether(const ToolModel& piece, const PieceMotion& motion, c
   for (int growth = 0; growth < kMostGrowths; ++growth) {
     Real bestShift = std::numeric_limits<Real>::max();
     Vec3 bestDirection;
+    int bestHeld = std::numeric_limits<int>::max();
     for (std::size_t candidate = 0; candidate <= piece.planes.size(); ++candidate) {
-      const Vec3 direction = candidate < piece.planes.size() ? piece.planes[candidate].normal : back;
+      const bool alongNormal = candidate < piece.planes.size();
+      const Vec3 direction = alongNormal ? piece.planes[candidate].normal : back;
       if (direction == Vec3{}) continue;
-      const Real shift = shortestClearingShift(piece, end, patch, direction, clearance);
-      if (!(shift < bestShift)) continue;
+      const Real least = alongNormal ? swingShift(piece.planes[candidate], end, patch, clearance) : 0;
+      const Real shift = shortestClearingShift(piece, end, patch, direction, clearance, least);
+      const int held = heldFaces(piece, end, patch, direction * shift);
+      if (held > bestHeld || (held == bestHeld && !(shift < bestShift))) continue;
       bool through = false;
       for (Index v = 0; v < vertexCount && !through; ++v) {
         if (patch.inCluster[v] == 0) continue;
@@ -499,6 +548,7 @@ void moveStuckFacesTogether(const ToolModel& piece, const PieceMotion& motion, c
       if (through) continue;
       bestShift = shift;
       bestDirection = direction;
+      bestHeld = held;
     }
     if (bestShift == std::numeric_limits<Real>::max()) return;
     const Vec3 shift = bestDirection * bestShift;

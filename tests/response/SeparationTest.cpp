@@ -243,6 +243,29 @@ TEST(Separation, FacesThatWantASharedNodeOnOppositeSidesMoveTogether) {
   }
 }
 
+TEST(Separation, TwoFacesRoundANeedleOneWithAPinnedNodeComeClear) {
+  // As above, with the outer node of one face pinned 5 cm above or below the needle: both faces
+  // must end on the pinned node's side, the only one where that face comes clear too.
+  for (const Real side : {Real(1), Real(-1)}) {
+    const ToolModel piece = needle();
+    Patch p;
+    const Vec3 corners[5] = {{0, 0, 0}, {0.05, 0.05 * side, 0.1}, {-0.05, 0, 0.1}, {0.05, 0, -0.1}, {-0.05, 0, -0.1}};
+    Index v[5];
+    for (int k = 0; k < 5; ++k) v[k] = p.node(corners[k], corners[k], k == 1 ? 0 : 1);
+    p.patch.faces.push_back({v[0], v[1], v[2]});
+    p.patch.faces.push_back({v[0], v[4], v[3]});
+    SeparationSettings oneRound;
+    oneRound.maxRounds = 1;
+    const SeparationCounts counts = separateFromPiece(piece, PieceMotion(Pose{}, Pose{}, 0.1), oneRound, p.patch);
+    EXPECT_EQ(counts.facesPierced, 0u) << "side " << side;
+    EXPECT_EQ(p.patch.positions[v[1]], corners[1]);
+    for (const std::array<Index, 3>& f : p.patch.faces) {
+      EXPECT_FALSE(triangleMeetsPiece(piece, p.patch.positions[f[0]], p.patch.positions[f[1]], p.patch.positions[f[2]], 0))
+          << "side " << side;
+    }
+  }
+}
+
 TEST(Separation, SettingsAreValidated) {
   EXPECT_TRUE(validateSeparationSettings({}).empty());
   SeparationSettings bad;
