@@ -83,7 +83,12 @@ CollisionConfiguration::CollisionConfiguration(const btDefaultCollisionConstruct
       true);
 }
 
-CollisionConfiguration::~CollisionConfiguration() = default;
+// The tools go first: deleting a swept tool's proxy takes it out of m_proxies, which must still be
+// there.
+CollisionConfiguration::~CollisionConfiguration() {
+  m_toolOrder.clear();
+  m_tools.clear();
+}
 
 int CollisionConfiguration::algorithmSize() { return static_cast<int>(sizeof(detail::ToolAlgorithm)); }
 
@@ -137,8 +142,8 @@ Tool& CollisionConfiguration::addTool(btRigidBody& body, const ToolOptions& requ
     options.name = "tool " + std::to_string(m_toolsCreated + 1);
   }
   auto fail = [&options](const std::string& problem) { throw Error("tool '" + options.name + "': " + problem); };
-  if (m_tools.count(&body) != 0) {
-    fail("this rigid body is already registered as a tool");
+  if (const Tool* existing = findTool(body)) {
+    fail("this rigid body is already registered, as tool '" + existing->name() + "'");
   }
   if (body.getCollisionShape() == nullptr) {
     fail("the rigid body has no collision shape");
@@ -198,9 +203,8 @@ Tool& addTool(btCollisionWorld& world, btRigidBody& body, const ToolOptions& opt
   }
   Tool& tool = configuration->addTool(body, options);
   if (tool.options().swept) {
-    tool.m_proxy = std::make_unique<detail::SweptProxy>(tool);
-    configuration->m_proxies.emplace(tool.m_proxy.get(), &tool);
-    world.addCollisionObject(tool.m_proxy.get(), btBroadphaseProxy::DefaultFilter, btBroadphaseProxy::AllFilter);
+    tool.m_proxy = new detail::SweptProxy(tool, configuration->m_proxies);
+    world.addCollisionObject(tool.m_proxy, btBroadphaseProxy::DefaultFilter, btBroadphaseProxy::AllFilter);
   }
   reroutePairs(world, body);
   return tool;
@@ -214,14 +218,19 @@ bool removeTool(btCollisionWorld& world, const btRigidBody& body) {
   }
   // Free the pairs' algorithms before the tool they point to.
   if (tool->m_proxy != nullptr) {
-    world.removeCollisionObject(tool->m_proxy.get());
-    configuration.m_proxies.erase(tool->m_proxy.get());
+    world.removeCollisionObject(tool->m_proxy);
+    delete tool->m_proxy;  // leaves the registry and the tool
   }
   reroutePairs(world, body);
   return configuration.removeTool(body);
 }
 
-Tool* findTool(btCollisionWorld& world, const btRigidBody& body) { return configurationOf(world).findTool(body); }
+Tool* findTool(btCollisionWorld& world, const btRigidBody& body) {
+  auto* dispatcher = dynamic_cast<btCollisionDispatcher*>(world.getDispatcher());
+  auto* configuration =
+      dispatcher != nullptr ? dynamic_cast<CollisionConfiguration*>(dispatcher->getCollisionConfiguration()) : nullptr;
+  return configuration != nullptr ? configuration->findTool(body) : nullptr;
+}
 
 void detail::beginCollisionPass(btCollisionWorld& world) { configurationOf(world).m_pass->begin(); }
 

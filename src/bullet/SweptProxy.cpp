@@ -11,11 +11,18 @@
 
 namespace thintool::detail {
 
-SweptProxy::SweptProxy(Tool& tool) : m_tool(tool), m_shape(tool) {
+SweptProxy::SweptProxy(Tool& tool, std::unordered_map<const btCollisionObject*, Tool*>& registry)
+    : m_tool(tool), m_registry(registry), m_shape(tool) {
+  m_registry.emplace(this, &tool);
   setCollisionShape(&m_shape);
   setCollisionFlags(CF_KINEMATIC_OBJECT | CF_NO_CONTACT_RESPONSE);
   setActivationState(DISABLE_DEACTIVATION);
   m_checkCollideWith = 1;
+}
+
+SweptProxy::~SweptProxy() {
+  m_registry.erase(this);
+  if (m_tool.m_proxy == this) m_tool.m_proxy = nullptr;
 }
 
 bool SweptProxy::checkCollideWithOverride(const btCollisionObject* other) const {

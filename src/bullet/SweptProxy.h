@@ -12,6 +12,8 @@
 #include <BulletCollision/CollisionDispatch/btCollisionObject.h>
 #include <BulletCollision/CollisionShapes/btSphereShape.h>
 
+#include <unordered_map>
+
 namespace thintool {
 class Tool;
 }
@@ -20,7 +22,13 @@ namespace thintool::detail {
 
 class SweptProxy final : public btCollisionObject {
  public:
-  explicit SweptProxy(Tool& tool);
+  /// registry: the configuration's proxies, which the proxy leaves when it is deleted.
+  SweptProxy(Tool& tool, std::unordered_map<const btCollisionObject*, Tool*>& registry);
+  /// A program may delete the proxy itself, as Bullet's demos free every object of the world's
+  /// array at exit: it leaves the registry and the tool, so that neither points to it after.
+  ~SweptProxy() override;
+  SweptProxy(const SweptProxy&) = delete;
+  SweptProxy& operator=(const SweptProxy&) = delete;
   Tool& tool() const { return m_tool; }
 
   // See: btCollisionObject::checkCollideWithOverride. Only soft bodies.
@@ -38,6 +46,7 @@ class SweptProxy final : public btCollisionObject {
   };
 
   Tool& m_tool;
+  std::unordered_map<const btCollisionObject*, Tool*>& m_registry;
   Shape m_shape;
 };
 

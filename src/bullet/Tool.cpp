@@ -30,7 +30,7 @@ Tool::Tool(btRigidBody& body, const ToolOptions& options, std::vector<ToolModel>
   m_detectionWorkspace.prepare(largest);
 }
 
-Tool::~Tool() = default;
+Tool::~Tool() { delete m_proxy; }
 
 void Tool::resetMotion() {
   m_jumpNext = true;

@@ -84,6 +84,54 @@ TEST(Configuration, RegistersOnceAndUnregisters) {
   EXPECT_FALSE(removeTool(w.world, w.body));
 }
 
+TEST(Configuration, FindToolInAStockWorldIsNull) {
+  World stock(std::make_unique<btSoftBodyRigidBodyCollisionConfiguration>());
+  EXPECT_EQ(findTool(stock.world, stock.body), nullptr);
+}
+
+TEST(Configuration, RegisteringABodyTwiceNamesTheToolItIs) {
+  World w(std::make_unique<CollisionConfiguration>());
+  ToolOptions first;
+  first.name = "spatula";
+  addTool(w.world, w.body, first);
+  ToolOptions second;
+  second.name = "scalpel";
+  const std::string message = errorOf([&] { addTool(w.world, w.body, second); });
+  EXPECT_NE(message.find("already registered, as tool 'spatula'"), std::string::npos) << message;
+}
+
+// Bullet's demos free every object of the world's array at exit, then the world, then the
+// configuration: the swept tool's proxy is among the objects, and must be freed once.
+TEST(Configuration, AProgramMayFreeEveryObjectOfTheWorldItself) {
+  auto* configuration = new CollisionConfiguration();
+  auto* dispatcher = new btCollisionDispatcher(configuration);
+  auto* broadphase = new btDbvtBroadphase();
+  auto* solver = new btSequentialImpulseConstraintSolver();
+  auto* softSolver = new SoftBodySolver(*configuration);
+  auto* world = new btSoftRigidDynamicsWorld(dispatcher, broadphase, solver, configuration, softSolver);
+  auto* shape = new btBoxShape(btVector3(0.4, 0.01, 0.4));
+  auto* body = new btRigidBody(btRigidBody::btRigidBodyConstructionInfo(0, new btDefaultMotionState(), shape));
+  world->addRigidBody(body);
+  ASSERT_TRUE(addTool(*world, *body).options().swept);
+  EXPECT_EQ(world->getNumCollisionObjects(), 2);  // the body and its swept proxy
+  world->stepSimulation(1.0 / 60, 1, 1.0 / 60);
+  // As Bullet's demos exit: every object of the array, then the world and what it was built on.
+  for (int i = world->getNumCollisionObjects() - 1; i >= 0; --i) {
+    btCollisionObject* object = world->getCollisionObjectArray()[i];
+    if (btRigidBody* rigid = btRigidBody::upcast(object)) delete rigid->getMotionState();
+    world->removeCollisionObject(object);
+    delete object;
+  }
+  EXPECT_EQ(world->getNumCollisionObjects(), 0);
+  delete world;
+  delete softSolver;
+  delete solver;
+  delete broadphase;
+  delete dispatcher;
+  delete configuration;  // the tool is still registered; its proxy is gone, and it knows
+  delete shape;
+}
+
 TEST(Configuration, InvalidOptionsNameTheToolAndTheField) {
   World w(std::make_unique<CollisionConfiguration>());
   ToolOptions options;

@@ -101,7 +101,8 @@ Tool& addTool(btCollisionWorld& world, btRigidBody& body, const ToolOptions& opt
 /// deleting a tool's body.
 bool removeTool(btCollisionWorld& world, const btRigidBody& body);
 
-/// The tool registered for body, or nullptr.
+/// The tool registered for body, or nullptr (also in a world built without ThinTool's
+/// configuration).
 Tool* findTool(btCollisionWorld& world, const btRigidBody& body);
 
 }  // namespace thintool

@@ -175,7 +175,10 @@ class Tool {
   std::vector<std::unique_ptr<SoftRest>> m_restShapes;
   /// With swept detection: the collision object whose box is the tool's swept box, so that Bullet
   /// makes a pair with every soft body the tool sweeps past (the tool's own box is not swept).
-  std::unique_ptr<detail::SweptProxy> m_proxy;
+  /// Owned by the tool, but it is in the world's object array, which Bullet programs free at exit
+  /// object by object: deleted there, it tells the tool (SweptProxy's destructor), which then does
+  /// not delete it again.
+  detail::SweptProxy* m_proxy = nullptr;
   Pose m_poseBefore;
   Pose m_poseNow;
   bool m_motionTracked = false;
