@@ -99,6 +99,38 @@ NodeVerdict judgeNode(const ToolModel& piece, const PieceMotion& motion, const P
   return {};
 }
 
+// The extent of points along an axis.
+void projectedInterval(const Vec3& axis, const Vec3* points, std::size_t count, Real& low, Real& high) {
+  low = std::numeric_limits<Real>::max();
+  high = -low;
+  for (std::size_t k = 0; k < count; ++k) {
+    const Real p = dot(axis, points[k]);
+    low = std::min(low, p);
+    high = std::max(high, p);
+  }
+}
+
+// Calls visit(axis) with the triangle's own candidate separating axes against the piece, unnormalised:
+// its normal and the cross products of its edges with the piece's; stops when visit returns true,
+// and says whether it did. The piece's face normals are the caller's to add.
+template <typename Visit>
+bool visitTriangleAxes(const ToolModel& piece, const Vec3* triangle, Visit&& visit) {
+  const Vec3 edges[3] = {triangle[1] - triangle[0], triangle[2] - triangle[1], triangle[0] - triangle[2]};
+  if (visit(cross(edges[0], triangle[2] - triangle[0]))) return true;
+  const std::vector<Vec3>& corners = piece.mesh.vertices;
+  for (const auto& edge : piece.featureEdges) {
+    const Vec3 direction = corners[edge[1]] - corners[edge[0]];
+    for (const Vec3& e : edges) {
+      if (visit(cross(direction, e))) return true;
+    }
+  }
+  return false;
+}
+
+bool hasPinnedNode(const SeparationPatch& patch, const std::array<Index, 3>& face) {
+  return !(patch.inverseMasses[face[0]] > 0 && patch.inverseMasses[face[1]] > 0 && patch.inverseMasses[face[2]] > 0);
+}
+
 // The separating-axis test of a triangle against the piece, both in the piece's frame: the
 // piece's face normals, the triangle's normal, and the cross products of their edges. With the
 // triangle's place at the start of the step as well (in the piece's frame then), it also says
@@ -121,7 +153,8 @@ class TriangleAxes {
     for (const Plane& plane : m_piece.planes) {
       if (visit(plane.normal)) return;
     }
-    if (visitTriangleAxes(end)) return;
+    const auto visitAxis = [this](const Vec3& axis) { return visit(axis); };
+    if (visitTriangleAxes(m_piece, end, visitAxis)) return;
     // The triangle's own axes at the start as well: a large face that turns during the step can
     // be separated at the start only along one of them, and without them it seems to have kept no
     // side (generated seed 1856: a needle's faces lost their side and let it into the body). They
@@ -130,7 +163,7 @@ class TriangleAxes {
     // centimetres from clearing (seed 1840).
     if (start != nullptr) {
       m_keepEndSide = m_bestConsistent < std::numeric_limits<Real>::max();
-      visitTriangleAxes(start);
+      visitTriangleAxes(m_piece, start, visitAxis);
     }
   }
 
@@ -154,30 +187,6 @@ class TriangleAxes {
   }
 
  private:
-  static void interval(const Vec3& axis, const Vec3* points, std::size_t count, Real& low, Real& high) {
-    low = std::numeric_limits<Real>::max();
-    high = -low;
-    for (std::size_t k = 0; k < count; ++k) {
-      const Real p = dot(axis, points[k]);
-      low = std::min(low, p);
-      high = std::max(high, p);
-    }
-  }
-
-  // The triangle's normal and the cross products of its edges with the piece's.
-  bool visitTriangleAxes(const Vec3* triangle) {
-    const Vec3 edges[3] = {triangle[1] - triangle[0], triangle[2] - triangle[1], triangle[0] - triangle[2]};
-    if (visit(cross(edges[0], triangle[2] - triangle[0]))) return true;
-    const std::vector<Vec3>& corners = m_piece.mesh.vertices;
-    for (const auto& edge : m_piece.featureEdges) {
-      const Vec3 direction = corners[edge[1]] - corners[edge[0]];
-      for (const Vec3& e : edges) {
-        if (visit(cross(direction, e))) return true;
-      }
-    }
-    return false;
-  }
-
   // Returns true when nothing more can be learnt: the axis separates the triangle and there is
   // no start to compare with, or it kept its side.
   bool visit(const Vec3& rawAxis) {
@@ -187,10 +196,10 @@ class TriangleAxes {
     const std::vector<Vec3>& corners = m_piece.mesh.vertices;
     Real pieceLow = 0;
     Real pieceHigh = 0;
-    interval(axis, corners.data(), corners.size(), pieceLow, pieceHigh);
+    projectedInterval(axis, corners.data(), corners.size(), pieceLow, pieceHigh);
     Real low = 0;
     Real high = 0;
-    interval(axis, m_end, 3, low, high);
+    projectedInterval(axis, m_end, 3, low, high);
     const Real alongPlus = pieceHigh - low;   // the move along +axis that clears the piece
     const Real alongMinus = high - pieceLow;  // the move along -axis that does
     const bool separated = std::min(alongPlus, alongMinus) <= m_tolerance;
@@ -199,7 +208,7 @@ class TriangleAxes {
 
     Real low0 = 0;
     Real high0 = 0;
-    interval(axis, m_start, 3, low0, high0);
+    projectedInterval(axis, m_start, 3, low0, high0);
     // On this side at the start, within rounding of where the last step left a face.
     if (low0 - pieceHigh >= -kStartSlack) consider(axis, alongPlus);
     if (pieceLow - high0 >= -kStartSlack) consider(-axis, alongMinus);
@@ -374,43 +383,48 @@ TranslationInterval meetingInterval(const ToolModel& piece, const Vec3 (&triangl
                                     Real grow) {
   TranslationInterval meeting;
   const std::vector<Vec3>& corners = piece.mesh.vertices;
+  // Narrows the interval by one axis; true once it is empty, which no other axis can change.
   const auto narrow = [&](const Vec3& rawAxis) {
     const Real axisLength = length(rawAxis);
-    if (!(axisLength > Real(1e-12)) || meeting.enter >= meeting.leave) return;
+    if (!(axisLength > Real(1e-12))) return false;
     const Vec3 axis = rawAxis / axisLength;
-    Real pieceLow = std::numeric_limits<Real>::max();
-    Real pieceHigh = -pieceLow;
-    for (const Vec3& c : corners) {
-      pieceLow = std::min(pieceLow, dot(axis, c));
-      pieceHigh = std::max(pieceHigh, dot(axis, c));
-    }
+    Real pieceLow = 0;
+    Real pieceHigh = 0;
+    projectedInterval(axis, corners.data(), corners.size(), pieceLow, pieceHigh);
     pieceLow -= grow;
     pieceHigh += grow;
-    Real low = std::numeric_limits<Real>::max();
-    Real high = -low;
-    for (const Vec3& p : triangle) {
-      low = std::min(low, dot(axis, p));
-      high = std::max(high, dot(axis, p));
-    }
+    Real low = 0;
+    Real high = 0;
+    projectedInterval(axis, triangle, 3, low, high);
     const Real speed = dot(axis, direction);
     if (std::abs(speed) < Real(1e-12)) {
       if (low >= pieceHigh || high <= pieceLow) meeting = {0, 0};
-      return;
+    } else {
+      Real first = (pieceLow - high) / speed;
+      Real second = (pieceHigh - low) / speed;
+      if (speed < 0) std::swap(first, second);
+      meeting.enter = std::max(meeting.enter, first);
+      meeting.leave = std::min(meeting.leave, second);
     }
-    Real first = (pieceLow - high) / speed;
-    Real second = (pieceHigh - low) / speed;
-    if (speed < 0) std::swap(first, second);
-    meeting.enter = std::max(meeting.enter, first);
-    meeting.leave = std::min(meeting.leave, second);
+    return meeting.enter >= meeting.leave;
   };
-  for (const Plane& plane : piece.planes) narrow(plane.normal);
-  const Vec3 edges[3] = {triangle[1] - triangle[0], triangle[2] - triangle[1], triangle[0] - triangle[2]};
-  narrow(cross(edges[0], triangle[2] - triangle[0]));
-  for (const auto& edge : piece.featureEdges) {
-    const Vec3 along = corners[edge[1]] - corners[edge[0]];
-    for (const Vec3& e : edges) narrow(cross(along, e));
+  for (const Plane& plane : piece.planes) {
+    if (narrow(plane.normal)) return meeting;
   }
+  visitTriangleAxes(piece, triangle, narrow);
   return meeting;
+}
+
+bool anyInGroup(const SeparationPatch& patch, const std::array<Index, 3>& face) {
+  return patch.inCluster[face[0]] != 0 || patch.inCluster[face[1]] != 0 || patch.inCluster[face[2]] != 0;
+}
+
+// The face in the piece's frame, its nodes in the group (patch.inCluster) moved by shift.
+void shiftedFace(const SeparationPatch& patch, const Pose& end, const std::array<Index, 3>& face, const Vec3& shift,
+                 Vec3 (&out)[3]) {
+  for (int k = 0; k < 3; ++k) {
+    out[k] = end.applyInverse(patch.positions[face[k]]) + (patch.inCluster[face[k]] != 0 ? shift : Vec3{});
+  }
 }
 
 // The smallest t ≥ least that moves the group (patch.inCluster) by t·direction (piece frame) clear of
@@ -428,8 +442,8 @@ Real shortestClearingShift(const ToolModel& piece, const Pose& end, const Separa
     raised = false;
     for (const std::array<Index, 3>& face : patch.faces) {
       if (patch.inCluster[face[0]] == 0 || patch.inCluster[face[1]] == 0 || patch.inCluster[face[2]] == 0) continue;
-      const Vec3 triangle[3] = {end.applyInverse(patch.positions[face[0]]), end.applyInverse(patch.positions[face[1]]),
-                                end.applyInverse(patch.positions[face[2]])};
+      Vec3 triangle[3];
+      shiftedFace(patch, end, face, {}, triangle);
       raised = pass(meetingInterval(piece, triangle, direction, clearance)) || raised;
     }
     for (Index v = 0; v < patch.vertexCount(); ++v) {
@@ -448,16 +462,14 @@ Real shortestClearingShift(const ToolModel& piece, const Pose& end, const Separa
 Real swingShift(const Plane& plane, const Pose& end, const SeparationPatch& patch, Real clearance) {
   Real shift = 0;
   for (const std::array<Index, 3>& face : patch.faces) {
+    if (!hasPinnedNode(patch, face) || !anyInGroup(patch, face)) continue;
     bool pinnedBeyond = true;
-    bool pinned = false;
-    bool grouped = false;
     for (Index v : face) {
-      const bool isPinned = !(patch.inverseMasses[v] > 0);
-      pinned = pinned || isPinned;
-      grouped = grouped || patch.inCluster[v] != 0;
-      if (isPinned) pinnedBeyond = pinnedBeyond && plane.signedDistance(end.applyInverse(patch.positions[v])) >= 0;
+      if (!(patch.inverseMasses[v] > 0)) {
+        pinnedBeyond = pinnedBeyond && plane.signedDistance(end.applyInverse(patch.positions[v])) >= 0;
+      }
     }
-    if (!pinned || !grouped || !pinnedBeyond) continue;
+    if (!pinnedBeyond) continue;
     for (Index v : face) {
       if (patch.inCluster[v] == 0) continue;
       shift = std::max(shift, clearance - plane.signedDistance(end.applyInverse(patch.positions[v])));
@@ -471,14 +483,9 @@ Real swingShift(const Plane& plane, const Pose& end, const SeparationPatch& patc
 int heldFaces(const ToolModel& piece, const Pose& end, const SeparationPatch& patch, const Vec3& shift) {
   int held = 0;
   for (const std::array<Index, 3>& face : patch.faces) {
-    const bool pinned = !(patch.inverseMasses[face[0]] > 0 && patch.inverseMasses[face[1]] > 0 &&
-                          patch.inverseMasses[face[2]] > 0);
-    if (!pinned) continue;
-    if (patch.inCluster[face[0]] == 0 && patch.inCluster[face[1]] == 0 && patch.inCluster[face[2]] == 0) continue;
+    if (!hasPinnedNode(patch, face) || !anyInGroup(patch, face)) continue;
     Vec3 moved[3];
-    for (int k = 0; k < 3; ++k) {
-      moved[k] = end.applyInverse(patch.positions[face[k]]) + (patch.inCluster[face[k]] != 0 ? shift : Vec3{});
-    }
+    shiftedFace(patch, end, face, shift, moved);
     held += TriangleAxes(piece, moved, nullptr, 0).meets() ? 1 : 0;
   }
   return held;
@@ -501,11 +508,6 @@ void moveStuckFacesTogether(const ToolModel& piece, const PieceMotion& motion, c
   const Pose& end = motion.end();
   const Index vertexCount = patch.vertexCount();
   patch.inCluster.assign(vertexCount, 0);
-  const auto shifted = [&](const std::array<Index, 3>& face, Vec3 (&out)[3], const Vec3& shift) {
-    for (int k = 0; k < 3; ++k) {
-      out[k] = end.applyInverse(patch.positions[face[k]]) + (patch.inCluster[face[k]] != 0 ? shift : Vec3{});
-    }
-  };
   const auto join = [&](const std::array<Index, 3>& face) {
     bool grew = false;
     for (Index v : face) {
@@ -519,7 +521,7 @@ void moveStuckFacesTogether(const ToolModel& piece, const PieceMotion& motion, c
   Vec3 back;
   for (const std::array<Index, 3>& face : patch.faces) {
     Vec3 now[3];
-    shifted(face, now, {});
+    shiftedFace(patch, end, face, {}, now);
     if (!TriangleAxes(piece, now, nullptr, 0).meets()) continue;
     join(face);
     for (int k = 0; k < 3; ++k) back += motion.start().applyInverse(patch.startPositions[face[k]]) - now[k];
@@ -554,9 +556,9 @@ void moveStuckFacesTogether(const ToolModel& piece, const PieceMotion& motion, c
     const Vec3 shift = bestDirection * bestShift;
     bool grew = false;
     for (const std::array<Index, 3>& face : patch.faces) {
-      if (patch.inCluster[face[0]] == 0 && patch.inCluster[face[1]] == 0 && patch.inCluster[face[2]] == 0) continue;
+      if (!anyInGroup(patch, face)) continue;
       Vec3 moved[3];
-      shifted(face, moved, shift);
+      shiftedFace(patch, end, face, shift, moved);
       if (TriangleAxes(piece, moved, nullptr, 0).meets()) grew = join(face) || grew;
     }
     if (grew) continue;
@@ -645,8 +647,7 @@ SeparationCounts separateFromPiece(const ToolModel& piece, const PieceMotion& mo
       if (!axes.meets() && motion.samples() > 1 && keptItsSideAlongArc(piece, motion, poses, patch, face)) {
         continue;
       }
-      const bool pinned = !(patch.inverseMasses[face[0]] > 0 && patch.inverseMasses[face[1]] > 0 &&
-                            patch.inverseMasses[face[2]] > 0);
+      const bool pinned = hasPinnedNode(patch, face);
       // A face whose pinned node passed the piece went round it, not through: it has no side it
       // could go back to, and it is left alone unless it meets the piece at the end.
       if (pinned && !axes.meets()) continue;
