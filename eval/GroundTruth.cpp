@@ -342,10 +342,12 @@ const GroundTruthStep& GroundTruth::update(const std::vector<Pose>& toolPoses, c
   if (nodes.size() != m_previousNodes.size()) throw Error("ground truth: the soft body's node count changed");
   const std::vector<Pose> poses = piecePoses(toolPoses);
   m_step = {};
-  m_step.pinnedReached = m_run.pinnedReachedStep > 0 || reachesPinnedNode(toolPoses, poses, nodes);
+  m_arcs.resize(m_pieces.size());
+  for (std::size_t k = 0; k < m_pieces.size(); ++k) followArc(k, toolPoses, poses, m_arcs[k]);
+  m_step.pinnedReached = m_run.pinnedReachedStep > 0 || reachesPinnedNode(poses, nodes);
   if (m_step.pinnedReached && m_run.pinnedReachedStep == 0) m_run.pinnedReachedStep = m_run.steps + 1;
 
-  if (!m_step.pinnedReached) countCrossings(toolPoses, poses, nodes);
+  if (!m_step.pinnedReached) countCrossings(nodes);
 
   for (const Vec3& node : nodes) measurePenetration(node, poses);
   for (const Triangle& f : faces) measurePenetration((nodes[f[0]] + nodes[f[1]] + nodes[f[2]]) / 3.0, poses);
@@ -443,26 +445,22 @@ int GroundTruth::crossingAlongArc(std::size_t k, std::size_t i, const std::vecto
   return 0;
 }
 
-bool GroundTruth::reachesPinnedNode(const std::vector<Pose>& toolPoses, const std::vector<Pose>& poses,
-                                    const std::vector<Vec3>& nodes) {
+bool GroundTruth::reachesPinnedNode(const std::vector<Pose>& poses, const std::vector<Vec3>& nodes) const {
   for (std::size_t k = 0; k < m_pieces.size(); ++k) {
     if (!m_pieces[k].immovable) continue;
-    followArc(k, toolPoses, poses, m_arc);
     for (int i : m_pinned) {
       const auto node = std::size_t(i);
       if (m_pieces[k].solid.signedDistance(poses[k].applyInverse(nodes[node])) < 0) return true;
-      if (crossingAlongArc(k, node, m_arc, nodes[node]) != 0) return true;
+      if (crossingAlongArc(k, node, m_arcs[k], nodes[node]) != 0) return true;
     }
   }
   return false;
 }
 
-void GroundTruth::countCrossings(const std::vector<Pose>& toolPoses, const std::vector<Pose>& poses,
-                                 const std::vector<Vec3>& nodes) {
+void GroundTruth::countCrossings(const std::vector<Vec3>& nodes) {
   for (std::size_t k = 0; k < m_pieces.size(); ++k) {
-    followArc(k, toolPoses, poses, m_arc);
     for (std::size_t i = 0; i < nodes.size(); ++i) {
-      const int side = crossingAlongArc(k, i, m_arc, nodes[i]);
+      const int side = crossingAlongArc(k, i, m_arcs[k], nodes[i]);
       if (side == 0) continue;
       if (m_crossedPiece[i] < 0) {
         ++m_run.crossedNodes;

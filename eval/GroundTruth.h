@@ -168,12 +168,11 @@ class GroundTruth {
 
  private:
   void measurePenetration(const Vec3& world, const std::vector<Pose>& piecePoses);
-  void countCrossings(const std::vector<Pose>& toolPoses, const std::vector<Pose>& poses, const std::vector<Vec3>& nodes);
+  void countCrossings(const std::vector<Vec3>& nodes);
   int crossingAlongArc(std::size_t piece, std::size_t node, const std::vector<Pose>& arc, const Vec3& nodeAfter) const;
   void followArc(std::size_t piece, const std::vector<Pose>& toolPoses, const std::vector<Pose>& poses,
                  std::vector<Pose>& arc) const;
-  bool reachesPinnedNode(const std::vector<Pose>& toolPoses, const std::vector<Pose>& poses,
-                         const std::vector<Vec3>& nodes);
+  bool reachesPinnedNode(const std::vector<Pose>& poses, const std::vector<Vec3>& nodes) const;
   bool pierces(const Vec3& a, const Vec3& b, const Vec3& c, std::size_t piece, const Pose& pose);
   std::vector<Pose> piecePoses(const std::vector<Pose>& toolPoses) const;
 
@@ -186,7 +185,7 @@ class GroundTruth {
   std::vector<int> m_crossedPiece;   // per node: the first piece it went through, or -1
   std::vector<signed char> m_sideBeforeCrossing;  // per node: its side of that piece before
   std::vector<int> m_pinned;
-  std::vector<Pose> m_arc;  // a piece's poses along its turn, kept to reuse its storage
+  std::vector<std::vector<Pose>> m_arcs;  // per piece: its poses along this step's turn (followArc)
   GroundTruthStep m_step;
   bool m_wrappedByFold = false;  // the tool is inside since a step whose surface passed through itself
   GroundTruthRun m_run;
