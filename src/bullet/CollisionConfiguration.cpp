@@ -29,10 +29,15 @@ btDefaultCollisionConstructionInfo withRoomForToolAlgorithm(btDefaultCollisionCo
   return info;
 }
 
-CollisionConfiguration& configurationOf(btCollisionWorld& world) {
+// The world's ThinTool configuration, or nullptr in a world built without one.
+CollisionConfiguration* findConfiguration(btCollisionWorld& world) {
   auto* dispatcher = dynamic_cast<btCollisionDispatcher*>(world.getDispatcher());
-  auto* configuration =
-      dispatcher != nullptr ? dynamic_cast<CollisionConfiguration*>(dispatcher->getCollisionConfiguration()) : nullptr;
+  return dispatcher != nullptr ? dynamic_cast<CollisionConfiguration*>(dispatcher->getCollisionConfiguration())
+                               : nullptr;
+}
+
+CollisionConfiguration& configurationOf(btCollisionWorld& world) {
+  CollisionConfiguration* configuration = findConfiguration(world);
   if (configuration == nullptr) {
     throw Error(
         "the world's btCollisionDispatcher was not built with a thintool::CollisionConfiguration; construct one "
@@ -226,9 +231,7 @@ bool removeTool(btCollisionWorld& world, const btRigidBody& body) {
 }
 
 Tool* findTool(btCollisionWorld& world, const btRigidBody& body) {
-  auto* dispatcher = dynamic_cast<btCollisionDispatcher*>(world.getDispatcher());
-  auto* configuration =
-      dispatcher != nullptr ? dynamic_cast<CollisionConfiguration*>(dispatcher->getCollisionConfiguration()) : nullptr;
+  CollisionConfiguration* configuration = findConfiguration(world);
   return configuration != nullptr ? configuration->findTool(body) : nullptr;
 }
 
