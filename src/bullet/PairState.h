@@ -21,6 +21,9 @@ struct btDbvtNode;
 
 namespace thintool::detail {
 
+/// Why a tool's pair with a soft body is left to Bullet's stock handler (ToolDiagnostics::stockPairs).
+enum class StockReason : std::uint8_t { None, DeformableWorld, ClusterCollision, NoRigidContact, NoFaces };
+
 struct PairState {
   PairState();
   ~PairState();
@@ -74,7 +77,7 @@ struct PairState {
   double detectionMicroseconds = 0;
   double responseMicroseconds = 0;
   Index rejectedCorrections = 0;
-  bool unsupported = false;
+  StockReason stock = StockReason::None;
   bool invalidPose = false;
 
   void clearResults() {
@@ -89,7 +92,7 @@ struct PairState {
     detectionMicroseconds = 0;
     responseMicroseconds = 0;
     rejectedCorrections = 0;
-    unsupported = false;
+    stock = StockReason::None;
     invalidPose = false;
   }
 

@@ -2,6 +2,8 @@
 // Copyright (c) 2026 The ThinTool developers
 #include <thintool/bullet/SoftBodySolver.h>
 
+#include "SoftSurface.h"
+
 #include <thintool/bullet/CollisionConfiguration.h>
 #include <thintool/bullet/Convert.h>
 #include <thintool/bullet/Tool.h>
@@ -32,10 +34,6 @@ Aabb sweptBounds(const Aabb& local, const PieceMotion& motion) {
     box.include(transformedBounds(local, motion.at(Real(k) / Real(motion.samples()))));
   }
   return box.expanded(radius * (1 - std::cos(motion.turn() / (2 * motion.samples()))));
-}
-
-bool ignores(const btSoftBody& softBody, const btCollisionObject& body) {
-  return softBody.m_collisionDisabledObjects.findLinearSearch(&body) != softBody.m_collisionDisabledObjects.size();
 }
 
 }  // namespace
@@ -85,7 +83,7 @@ bool SoftBodySolver::separate(Tool& tool) {
     const PieceMotion motion(before, now, settings.maxTurnPerSample, tool.pieceTransform(p));
     for (int s = 0; s < m_softBodySet.size(); ++s) {
       btSoftBody& softBody = *m_softBodySet[s];
-      if (ignores(softBody, tool.body())) continue;
+      if (detail::ignores(softBody, tool.body()) || !detail::lastWordActsOn(detail::stockReason(softBody))) continue;
       const SeparationCounts piece = separatePiece(tool, tool.piece(p), motion, softBody);
       moved = moved || piece.nodesMoved > 0 || piece.facesMoved > 0;
       counts.accumulate(piece);

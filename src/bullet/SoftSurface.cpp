@@ -7,6 +7,7 @@
 
 #include <BulletSoftBody/btSoftBody.h>
 #include <BulletSoftBody/btSoftBodyInternals.h>
+#include <BulletSoftBody/btSoftBodySolvers.h>
 
 #include <algorithm>
 #include <cmath>
@@ -129,6 +130,27 @@ void gatherFace(const btSoftBody& softBody, Index faceId, const Aabb& toolBox, P
 }
 
 }  // namespace
+
+bool ignores(const btSoftBody& softBody, const btCollisionObject& body) {
+  return softBody.m_collisionDisabledObjects.findLinearSearch(&body) != softBody.m_collisionDisabledObjects.size();
+}
+
+// Bullet's handler picks the soft body's rigid contact by its flags under RVSmask, one kind at a
+// time; ThinTool stands in for the node contact (SDF_RS) of the classic solver only.
+StockReason stockReason(const btSoftBody& softBody) {
+  const btSoftBodySolver* solver = softBody.getSoftBodySolver();
+  if (solver == nullptr || solver->getSolverType() != btSoftBodySolver::DEFAULT_SOLVER) {
+    return StockReason::DeformableWorld;
+  }
+  const int asked = softBody.m_cfg.collisions & btSoftBody::fCollision::RVSmask;
+  if ((asked & btSoftBody::fCollision::CL_RS) != 0) {
+    return StockReason::ClusterCollision;
+  }
+  if (asked != btSoftBody::fCollision::SDF_RS) {
+    return StockReason::NoRigidContact;
+  }
+  return softBody.m_faces.size() == 0 ? StockReason::NoFaces : StockReason::None;
+}
 
 bool ensureFaceTree(btSoftBody& softBody) {
   if (!softBody.m_fdbvt.empty() || softBody.m_faces.size() == 0) {

@@ -12,10 +12,23 @@
 
 #include <vector>
 
+class btCollisionObject;
 class btSoftBody;
 struct btDbvtNode;
 
 namespace thintool::detail {
+
+/// As Bullet's own handler: a soft body ignores the bodies in its m_collisionDisabledObjects.
+bool ignores(const btSoftBody& softBody, const btCollisionObject& body);
+
+/// Why a tool's pair with this soft body is left to Bullet's stock handler, if it is.
+StockReason stockReason(const btSoftBody& softBody);
+
+/// Whether the last word keeps the soft body's nodes out of tools: every body whose pairs are
+/// ThinTool's, and the faceless ones, which have nodes but nothing for detection to meet.
+inline bool lastWordActsOn(StockReason reason) {
+  return reason == StockReason::None || reason == StockReason::NoFaces;
+}
 
 /// Builds the soft body's face tree if it has none. Bullet keeps a built tree up to date in every
 /// predictMotion; its own initializeFaceTree() compares every face with every other (quadratic),

@@ -145,7 +145,11 @@ const ToolStepReport& Tool::report() {
     diagnostics.rejectedCorrections += state.rejectedCorrections;
     diagnostics.detectionMicroseconds += state.detectionMicroseconds;
     diagnostics.responseMicroseconds += state.responseMicroseconds;
-    diagnostics.unsupportedPairs += state.unsupported ? 1 : 0;
+    StockPairs& stock = diagnostics.stockPairs;
+    stock.deformableWorld += state.stock == detail::StockReason::DeformableWorld ? 1 : 0;
+    stock.clusterCollision += state.stock == detail::StockReason::ClusterCollision ? 1 : 0;
+    stock.noRigidContact += state.stock == detail::StockReason::NoRigidContact ? 1 : 0;
+    stock.noFaces += state.stock == detail::StockReason::NoFaces ? 1 : 0;
     diagnostics.invalidPosePairs += state.invalidPose ? 1 : 0;
     for (int check = 1; check <= 2; ++check) {
       for (Index node : state.excludedNodes[check - 1]) {

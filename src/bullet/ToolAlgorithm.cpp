@@ -138,6 +138,15 @@ Real applyResponse(PairState& state, btSoftBody& softBody, btRigidBody* dynamicB
   return std::sqrt(longestSquared);
 }
 
+// What Bullet's own soft–rigid algorithm does with the pair.
+void handToStock(btSoftBody& softBody, const btCollisionObjectWrapper* toolWrap) {
+  if (softBody.getSoftBodySolver() != nullptr) {
+    softBody.getSoftBodySolver()->processCollision(&softBody, toolWrap);
+  } else {
+    softBody.defaultCollisionHandler(toolWrap);
+  }
+}
+
 btRigidBody* dynamicTool(const btCollisionObject& toolObject) {
   const btRigidBody* rigidBody = btRigidBody::upcast(&toolObject);
   return rigidBody != nullptr && !rigidBody->isStaticOrKinematicObject() ? const_cast<btRigidBody*>(rigidBody)
@@ -162,13 +171,18 @@ ToolAlgorithm::~ToolAlgorithm() {
 
 void ToolAlgorithm::processCollision(const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1,
                                      const btDispatcherInfo& /*dispatchInfo*/, btManifoldResult* /*resultOut*/) {
-  if (m_mode == Mode::Idle) {
-    return;
-  }
   const btCollisionObjectWrapper* softWrap = m_swapped ? body1 : body0;
   const btCollisionObjectWrapper* toolWrap = m_swapped ? body0 : body1;
   btSoftBody& softBody = *const_cast<btSoftBody*>(btSoftBody::upcast(softWrap->getCollisionObject()));
   const btCollisionObject& toolBody = m_tool.body();
+  if (m_mode == Mode::Idle) {
+    // A swept tool's own pair: its proxy's pair does ThinTool's work and counts the pairs Bullet
+    // keeps, which are collided here, against the tool's shape as stock would.
+    if (!ignores(softBody, toolBody) && stockReason(softBody) != StockReason::None) {
+      handToStock(softBody, toolWrap);
+    }
+    return;
+  }
   if (m_mode == Mode::OnePiece) {
     const Pose pose = toPose(toolWrap->getWorldTransform());
     processPiece(*m_state, softBody, toolBody, toolWrap, m_state->hasPreviousPose ? m_state->previousPose : pose, pose,
@@ -217,16 +231,13 @@ void ToolAlgorithm::processPiece(PairState& state, btSoftBody& softBody, const b
   state.clearResults();
   state.live = true;
 
-  // As the stock algorithm: pairs the soft body was told to ignore are ignored.
-  if (softBody.m_collisionDisabledObjects.findLinearSearch(&toolBody) != softBody.m_collisionDisabledObjects.size()) {
+  if (ignores(softBody, toolBody)) {
     return;
   }
-  // The deformable world solves other contact types; hand its pairs to Bullet unchanged.
-  if (softBody.getSoftBodySolver() == nullptr ||
-      softBody.getSoftBodySolver()->getSolverType() != btSoftBodySolver::DEFAULT_SOLVER) {
-    state.unsupported = true;
-    if (softBody.getSoftBodySolver() != nullptr && !swept) {
-      softBody.getSoftBodySolver()->processCollision(&softBody, toolWrap);
+  state.stock = stockReason(softBody);
+  if (state.stock != StockReason::None) {
+    if (!swept) {
+      handToStock(softBody, toolWrap);  // a swept tool's own pair does it (processCollision)
     }
     return;
   }

@@ -50,6 +50,23 @@ struct LastWordDiagnostics {
   Index violations() const { return counts.nodesInside + counts.facesPierced; }
 };
 
+/// Pairs of the tool with a soft body that ThinTool leaves to Bullet's stock handler, counted by
+/// why. Bullet then collides them as it would without ThinTool, and the last word leaves the soft
+/// body alone, except a faceless one: the last word still keeps its nodes out of the tool.
+struct StockPairs {
+  /// The soft body's solver is not the classic one (btDeformableMultiBodyDynamicsWorld).
+  Index deformableWorld = 0;
+  /// The soft body collides with rigid bodies by its clusters (fCollision::CL_RS), whose
+  /// impulses ThinTool's node moves would fight.
+  Index clusterCollision = 0;
+  /// The soft body's flags ask for no node contact with rigid bodies (fCollision::SDF_RS unset).
+  Index noRigidContact = 0;
+  /// The soft body has no faces (ropes, links-only bodies, volumes without a surface): there is
+  /// nothing for a tool's rays and swept tests to meet.
+  Index noFaces = 0;
+  Index total() const { return deformableWorld + clusterCollision + noRigidContact + noFaces; }
+};
+
 struct ToolDiagnostics {
   DetectionCounters detection;  ///< summed over the tool's pieces and soft bodies
   Index pairs = 0;              ///< (piece, soft body) pairs processed in the step
@@ -60,9 +77,8 @@ struct ToolDiagnostics {
   Real maxRemainingPenetration = 0;
   double detectionMicroseconds = 0;
   double responseMicroseconds = 0;
-  /// Pairs handed to Bullet's stock handler because their world's soft solver is not the
-  /// classic one (btDeformableMultiBodyDynamicsWorld is not supported yet).
-  Index unsupportedPairs = 0;
+  /// Pairs handed to Bullet's stock handler, by why (StockPairs).
+  StockPairs stockPairs;
   /// Soft nodes whose correction was not finite and was not written (never expected).
   Index rejectedCorrections = 0;
   /// Pairs skipped because the tool's transform was not finite.
