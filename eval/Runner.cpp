@@ -242,6 +242,7 @@ ToolOptions optionsFor(const SceneSpec& scene, const ToolSpec& tool) {
   options.name = tool.name;
   options.force.enabled = scene.force;
   options.response.friction.enabled = scene.friction;
+  options.response.friction.fromBodies = false;  // a scene's friction is ThinTool's own coefficients
   options.separation.enabled = options.separation.enabled && scene.lastWord;
   return options;
 }

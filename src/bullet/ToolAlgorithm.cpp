@@ -147,6 +147,13 @@ void handToStock(btSoftBody& softBody, const btCollisionObjectWrapper* toolWrap)
   }
 }
 
+// Bullet's own node contact's coefficient (CollideSDF_RS): the soft body's kDF times the rigid
+// body's friction. Frictionless when either is not a number or negative.
+Real pairFriction(const btSoftBody& softBody, const btCollisionObject& toolBody) {
+  const Real coefficient = Real(softBody.m_cfg.kDF) * Real(toolBody.getFriction());
+  return std::isfinite(coefficient) && coefficient > 0 ? coefficient : 0;
+}
+
 btRigidBody* dynamicTool(const btCollisionObject& toolObject) {
   const btRigidBody* rigidBody = btRigidBody::upcast(&toolObject);
   return rigidBody != nullptr && !rigidBody->isStaticOrKinematicObject() ? const_cast<btRigidBody*>(rigidBody)
@@ -269,6 +276,7 @@ void ToolAlgorithm::processValidPiece(PairState& state, btSoftBody& softBody, co
     state.patch.orientation = surfaceOrientation(softBody);
     state.patch.positions.reserve(softBody.m_nodes.size());
     state.patch.previousPositions.reserve(softBody.m_nodes.size());
+    state.patch.checkedPositions.reserve(softBody.m_nodes.size());
     state.patch.inverseMasses.reserve(softBody.m_nodes.size());
     state.patch.nodeIds.reserve(softBody.m_nodes.size());
     state.patch.faces.reserve(softBody.m_faces.size());
@@ -326,6 +334,10 @@ void ToolAlgorithm::processValidPiece(PairState& state, btSoftBody& softBody, co
   const btScalar timeStep = softBody.m_sst.sdt;
   ResponseSettings response = options.response;
   response.guardNodes = response.guardNodes && !swept;  // swept detection tests every node itself
+  if (response.friction.enabled && response.friction.fromBodies) {
+    response.friction.staticCoefficient = pairFriction(softBody, toolBody);
+    response.friction.kineticCoefficient = response.friction.staticCoefficient;
+  }
   computeResponse(model, pose, previousPose, state.patch, state.contacts, skin, timeStep, response,
                   m_tool.m_responseWorkspace, state.corrections, state.wrench);
   state.previousPose = pose;

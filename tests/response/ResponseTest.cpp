@@ -153,7 +153,9 @@ Real frictionDrag(bool enabled, Real staticCoefficient, Real kineticCoefficient)
   Pose previous = f.pose;
   previous.translation.x -= 0.002;
   ResponseSettings settings;
-  settings.friction = {enabled, staticCoefficient, kineticCoefficient};
+  settings.friction.enabled = enabled;
+  settings.friction.staticCoefficient = staticCoefficient;
+  settings.friction.kineticCoefficient = kineticCoefficient;
   f.respond(settings, &previous);
   EXPECT_NEAR(f.finalPosition(v).y, -kSkin, 1e-12) << "friction leaves the normal move alone";
   return f.finalPosition(v).x;

@@ -33,7 +33,9 @@ struct ClampSettings {
 
   static ToolOptions defaultJawOptions() {
     ToolOptions options;
+    // A grasp's own coefficients, not the soft body's: a jaw's grip is the clamp's design.
     options.response.friction.enabled = true;
+    options.response.friction.fromBodies = false;
     return options;
   }
 };

@@ -50,6 +50,7 @@ struct ToolOptions {
     ToolOptions options;
     options.swept = false;
     options.separation.enabled = false;
+    options.response.friction.enabled = false;  // the paper's response is frictionless
     return options;
   }
   /// The paper's Fig. 7 (right) ablation: discrete rays only, without association and both checks.

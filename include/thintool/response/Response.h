@@ -53,8 +53,16 @@ enum class ResponseKind { Constraint, PaperForce, None };
 /// staticCoefficient × the node's normal move (it sticks), and reduced by kineticCoefficient × that
 /// move otherwise (it slides). The normal move stands for the normal force, N = m·d/dt². Off, it
 /// costs nothing.
+///
+/// With fromBodies, the Bullet glue takes Bullet's own coefficient for each pair: its node contact
+/// (btSoftBodyInternals.h, CollideSDF_RS) lets a node stick while its tangential motion is within
+/// fc times its normal motion and takes fc of the slip off otherwise, fc being the soft body's kDF
+/// times the rigid body's friction. The core reads only the two coefficients.
 struct FrictionSettings {
   bool enabled = false;
+  /// Bullet glue: μs = μk = the soft body's m_cfg.kDF × the tool body's getFriction(), per pair,
+  /// as stock Bullet's node contact. Off: the two coefficients below.
+  bool fromBodies = true;
   Real staticCoefficient = 0.8;   ///< μs (>= 0)
   Real kineticCoefficient = 0.6;  ///< μk (>= 0, <= μs)
 };
