@@ -56,6 +56,9 @@ struct PairState {
   std::vector<Index> candidateFaces;  ///< faces whose tree leaves met the gather's walk
   /// Face count the topology facts below were computed for.
   int facesSeen = -1;
+  /// The skin the pair keeps (m): ToolOptions::skin, or less while it grows after a first step
+  /// that found soft nodes inside it (ToolOptions::skinGrowthSpeed). Negative before that step.
+  Real skinInEffect = -1;
   /// The piece's pose when the pair was last processed: the start of this step.
   Pose previousPose;
   bool hasPreviousPose = false;
@@ -104,6 +107,7 @@ struct PairState {
     forceHistory.reset();
     step += 2;  // what was recorded before is no longer the previous step
     hasPreviousPose = false;
+    skinInEffect = -1;
     hasSoftBounds = false;
     live = false;
   }

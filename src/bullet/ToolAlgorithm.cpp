@@ -154,6 +154,23 @@ Real pairFriction(const btSoftBody& softBody, const btCollisionObject& toolBody)
   return std::isfinite(coefficient) && coefficient > 0 ? coefficient : 0;
 }
 
+// The skin the pair keeps this step (ToolOptions::skinGrowthSpeed): in its first step, the
+// closest gathered node's distance outside the piece at the start of the step, if that is within
+// the skin; afterwards growing by growth a step, up to the skin.
+Real pairSkin(PairState& state, const ToolModel& model, const Pose& startPose, Real skin, Real growth) {
+  if (state.skinInEffect >= 0) {
+    state.skinInEffect = std::min(skin, state.skinInEffect + growth);
+    return state.skinInEffect;
+  }
+  Real closest = skin;
+  const SoftPatch& patch = state.patch;
+  for (Index v = 0; v < patch.vertexCount(); ++v) {
+    closest = std::min(closest, outsideDistance(model.planes, startPose.applyInverse(patch.previousPositions[v])));
+  }
+  state.skinInEffect = std::max(closest, Real(0));
+  return state.skinInEffect;
+}
+
 btRigidBody* dynamicTool(const btCollisionObject& toolObject) {
   const btRigidBody* rigidBody = btRigidBody::upcast(&toolObject);
   return rigidBody != nullptr && !rigidBody->isStaticOrKinematicObject() ? const_cast<btRigidBody*>(rigidBody)
@@ -290,7 +307,8 @@ void ToolAlgorithm::processValidPiece(PairState& state, btSoftBody& softBody, co
     state.lastStep.assign(softBody.m_nodes.size(), 0);
   }
 
-  const Real skin = options.skin >= 0 ? options.skin : Real(softBody.getCollisionShape()->getMargin());
+  const Real fullSkin = options.skin >= 0 ? options.skin : Real(softBody.getCollisionShape()->getMargin());
+  const btScalar timeStep = softBody.m_sst.sdt;
   Aabb reach = transformedBounds(model.bounds, pose);
   if (swept) {
     reach.include(transformedBounds(model.bounds, previousPose));
@@ -300,7 +318,8 @@ void ToolAlgorithm::processValidPiece(PairState& state, btSoftBody& softBody, co
   // as the soft body moved as a whole this step, if farther.
   const Real motionBound = swept ? std::max(2 * state.softReach, softBodyMotion(softBody, state)) : 0;
   const Real leafSlack = pass != nullptr ? faceLeafSlack(softBody, pass->nodeTravel()) : 0;
-  const Index walked = gatherPatch(softBody, reach.expanded(skin), motionBound, leafSlack, swept, state);
+  const Index walked = gatherPatch(softBody, reach.expanded(fullSkin), motionBound, leafSlack, swept, state);
+  const Real skin = pairSkin(state, model, previousPose, fullSkin, options.skinGrowthSpeed * Real(timeStep));
 
   if (swept) {
     ++state.step;
@@ -331,7 +350,6 @@ void ToolAlgorithm::processValidPiece(PairState& state, btSoftBody& softBody, co
   state.counters.facesWalked = walked;
   const auto detected = Clock::now();
 
-  const btScalar timeStep = softBody.m_sst.sdt;
   ResponseSettings response = options.response;
   response.guardNodes = response.guardNodes && !swept;  // swept detection tests every node itself
   if (response.friction.enabled && response.friction.fromBodies) {

@@ -17,6 +17,8 @@ std::string validateToolOptions(const ToolOptions& options) {
   std::ostringstream problem;
   if (!std::isfinite(options.skin)) {
     problem << "skin must be finite (negative picks the soft body's margin), got " << options.skin;
+  } else if (!(options.skinGrowthSpeed > 0)) {
+    problem << "skinGrowthSpeed must be > 0 m/s (infinite: at once), got " << options.skinGrowthSpeed;
   } else if (!isLength(options.probeDepth)) {
     problem << "probeDepth must be a finite length >= 0 (0 = automatic), got " << options.probeDepth;
   } else if (options.filters.check1 && !options.association.enabled) {

@@ -146,6 +146,13 @@ TEST(Configuration, InvalidOptionsNameTheToolAndTheField) {
   message = errorOf([&] { addTool(w.world, w.body, options); });
   EXPECT_NE(message.find("filters.check1"), std::string::npos) << message;
 
+  for (const Real speed : {Real(0), Real(-1), Real(std::nan(""))}) {
+    options = ToolOptions{};
+    options.skinGrowthSpeed = speed;
+    message = errorOf([&] { addTool(w.world, w.body, options); });
+    EXPECT_NE(message.find("skinGrowthSpeed"), std::string::npos) << message;
+  }
+
   options = ToolOptions{};
   options.sampling.spacing = std::nan("");
   message = errorOf([&] { addTool(w.world, w.body, options); });

@@ -434,5 +434,19 @@ TEST(SoftBodyKinds, ClothDrapedOverACapsule) {
   expectNoWorseThanStock("cloth over a capsule", scene, kShapeNotCompared);
 }
 
+TEST(SoftBodyKinds, BodiesCreatedInsideTheMarginOfATool) {
+  KindScene scene;
+  scene.build = [](KindWorld& w) {
+    // The box's top at 0.4 m; the cloth 0.1 m and the ball's bottom 0.05 m above it, well within
+    // the soft margin (0.25 m), which is also the tool's skin.
+    w.addRigid(new btBoxShape(btVector3(0.8, 0.2, 0.8)), at(btVector3(0, 0.2, 0)));
+    btSoftBody& sheet = w.addSoft(cloth(w.info(), 0.5, 0.35, 11));
+    sheet.translate(btVector3(-0.4, 0, 0));
+    w.addSoft(ball(w.info(), btVector3(0.4, 0.75, 0), 0.3, 128));
+  };
+  scene.steps = 60;
+  expectNoWorseThanStock("bodies created in the margin", scene, kShapeNotCompared);
+}
+
 }  // namespace
 }  // namespace thintool

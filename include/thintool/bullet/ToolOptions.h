@@ -28,6 +28,12 @@ struct ToolOptions {
   /// soft body's own collision margin (btSoftBody::getCollisionShape()->getMargin()), as Bullet's
   /// stock soft–rigid contact does.
   Real skin = -1;
+  /// How fast (m/s) a pair that begins with soft nodes already inside the skin (a body created
+  /// within the tool's margin, a tool registered or set down onto tissue) grows its skin from the
+  /// closest node's distance to the full skin. Pushed out to the full skin in one step, those nodes
+  /// would leave at up to skin/dt: 15 m/s from Bullet's default 0.25 m margin at 60 Hz. Infinite:
+  /// at once.
+  Real skinGrowthSpeed = 1;
 
   /// Swept detection (detection/SweptDetection.h): contacts over the whole motion of a step, so a
   /// tool moving farther than its thickness per step never passes through. Off, the paper's
