@@ -94,14 +94,28 @@ void makeContactsLast(btSoftBody& softBody) {
   }
 }
 
+// The longest move a correction of this node can need (m): back along its own motion this step
+// (from where the sweep began it), across the piece and out of its skin, and as far as a point of
+// the piece travelled, which pieceReach covers with the piece and its skin.
+Real justifiedMove(const SoftPatch& patch, Index vertex, Real pieceReach) {
+  Real ownMotion = length(patch.positions[vertex] - patch.previousPositions[vertex]);
+  if (patch.checkedPositions.size() == patch.vertexCount()) {
+    ownMotion = std::max(ownMotion, length(patch.positions[vertex] - patch.checkedPositions[vertex]));
+  }
+  return pieceReach + ownMotion;
+}
+
 // Writes the corrections into the soft body: the moves, the solver's holds, and for a dynamic tool
-// the reaction. A correction that is not finite is counted and never written.
-// dynamicBody, when not null, is a dynamic tool that takes the moved nodes' reaction. Returns the
-// longest move written (m).
-Real applyResponse(PairState& state, btSoftBody& softBody, btRigidBody* dynamicBody, btScalar timeStep) {
+// the reaction. A correction that is not finite, or moves its node farther than the step can
+// justify (justifiedMove), is counted and never written. dynamicBody, when not null, is a dynamic
+// tool that takes the moved nodes' reaction. Returns the longest move written (m).
+Real applyResponse(PairState& state, btSoftBody& softBody, btRigidBody* dynamicBody, btScalar timeStep,
+                   Real pieceReach) {
   Real longestSquared = 0;
   for (const NodeCorrection& correction : state.corrections) {
-    if (!isFinite(correction.displacement) || !isFinite(correction.normal)) {
+    const Real justified = justifiedMove(state.patch, correction.vertex, pieceReach);
+    if (!isFinite(correction.displacement) || !isFinite(correction.normal) ||
+        !(lengthSquared(correction.displacement) <= justified * justified)) {
       ++state.rejectedCorrections;
       continue;
     }
@@ -391,7 +405,11 @@ void ToolAlgorithm::processValidPiece(PairState& state, btSoftBody& softBody, co
     }
   }
   const bool forceReacts = options.force.enabled && options.force.applyToDynamicTool;
-  const Real moved = applyResponse(state, softBody, forceReacts ? nullptr : dynamicBody, timeStep);
+  // Across the piece and its skin, and as far as a point of the piece travels in the step (at most
+  // its translation and, turning, the piece's extent): a longer move is a fault, not a correction.
+  const Real across = length(model.bounds.extent());
+  const Real pieceReach = 2 * across + length(pose.translation - previousPose.translation) + fullSkin;
+  const Real moved = applyResponse(state, softBody, forceReacts ? nullptr : dynamicBody, timeStep, pieceReach);
   if (pass != nullptr) {
     pass->recordMoves(moved);
   }

@@ -79,7 +79,9 @@ struct ToolDiagnostics {
   double responseMicroseconds = 0;
   /// Pairs handed to Bullet's stock handler, by why (StockPairs).
   StockPairs stockPairs;
-  /// Soft nodes whose correction was not finite and was not written (never expected).
+  /// Soft nodes whose correction was not written: not finite, or longer than the step can justify
+  /// (the node's own motion back, across the piece and its skin, and the piece's travel). Never
+  /// expected.
   Index rejectedCorrections = 0;
   /// Pairs skipped because the tool's transform was not finite.
   Index invalidPosePairs = 0;
