@@ -207,6 +207,21 @@ ToolAlgorithm::~ToolAlgorithm() {
   }
 }
 
+// One piece's step against one soft body: what the stages read, and what they hand on.
+struct ToolAlgorithm::PieceStep {
+  PairState& state;
+  btSoftBody& softBody;
+  const btCollisionObject& toolBody;
+  const ToolModel& model;
+  Pose previousPose;
+  Pose pose;
+  bool swept = false;
+  btScalar timeStep = 0;
+  Real fullSkin = 0;  ///< ToolOptions::skin, or the soft body's margin (m)
+  Real skin = 0;      ///< what the pair keeps this step (pairSkin), at most fullSkin (m)
+  Clock::time_point start{};
+};
+
 void ToolAlgorithm::processCollision(const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1,
                                      const btDispatcherInfo& /*dispatchInfo*/, btManifoldResult* /*resultOut*/) {
   const btCollisionObjectWrapper* softWrap = m_swapped ? body1 : body0;
@@ -223,17 +238,215 @@ void ToolAlgorithm::processCollision(const btCollisionObjectWrapper* body0, cons
   }
   if (m_mode == Mode::OnePiece) {
     const Pose pose = toPose(toolWrap->getWorldTransform());
-    processPiece(*m_state, softBody, toolBody, toolWrap, m_state->hasPreviousPose ? m_state->previousPose : pose, pose,
-                 false);
+    PairState& state = *m_state;
+    PieceStep step{state, softBody, toolBody, m_tool.m_pieces[state.piece],
+                   state.hasPreviousPose ? state.previousPose : pose, pose};
+    processPiece(step, toolWrap);
     return;
   }
   Pose bodyBefore;
   Pose bodyNow;
   m_tool.bodyMotion(bodyBefore, bodyNow);
   for (Index piece = 0; piece < m_tool.pieceCount(); ++piece) {
-    PairState& state = m_tool.pairState(softBody, piece);
-    processPiece(state, softBody, toolBody, toolWrap, bodyBefore * m_tool.pieceTransform(piece),
-                 bodyNow * m_tool.pieceTransform(piece), true);
+    PieceStep step{m_tool.pairState(softBody, piece), softBody, toolBody, m_tool.m_pieces[piece],
+                   bodyBefore * m_tool.pieceTransform(piece), bodyNow * m_tool.pieceTransform(piece)};
+    step.swept = true;
+    processPiece(step, toolWrap);
+  }
+}
+
+void ToolAlgorithm::processPiece(PieceStep& step, const btCollisionObjectWrapper* toolWrap) {
+  PairState& state = step.state;
+  state.clearResults();
+  state.live = true;
+
+  if (ignores(step.softBody, step.toolBody)) {
+    return;
+  }
+  state.stock = stockReason(step.softBody);
+  if (state.stock != StockReason::None) {
+    if (!step.swept) {
+      handToStock(step.softBody, toolWrap);  // a swept tool's own pair does it (processCollision)
+    }
+    return;
+  }
+  if (!isFinite(step.pose) || !isFinite(step.previousPose)) {
+    state.invalidPose = true;
+    if (!state.hasPreviousPose || !isFinite(state.previousPose)) {
+      return;
+    }
+    // The tissue stays held where the tool last was, as if it had stood still for a step: skipping
+    // the pair would let the soft body spring into the tool's space unopposed.
+    step.previousPose = state.previousPose;
+    step.pose = state.previousPose;
+  }
+  processValidPiece(step);
+}
+
+// The stages, top to bottom; each reads what the ones before it left in the step and the pair.
+void ToolAlgorithm::processValidPiece(PieceStep& step) {
+  step.start = Clock::now();
+  step.timeStep = step.softBody.m_sst.sdt;
+  prepareBuffers(step);
+  gather(step);
+  detect(step);
+  const auto detected = Clock::now();
+  respond(step);
+  if (step.swept) {
+    rememberSweep(step);
+  }
+  write(step);
+  releasePatch(step.state);
+  step.state.detectionMicroseconds = microsecondsBetween(step.start, detected);
+  step.state.responseMicroseconds = microsecondsBetween(detected, Clock::now());
+}
+
+// The face tree, and the pair's buffers at the soft body's size, whenever its faces change.
+void ToolAlgorithm::prepareBuffers(PieceStep& step) {
+  PairState& state = step.state;
+  btSoftBody& softBody = step.softBody;
+  if (ensureFaceTree(softBody) && m_tool.m_pass != nullptr) {
+    m_tool.m_pass->recordUnfittedTree();
+  }
+  if (state.facesSeen == softBody.m_faces.size()) {
+    return;
+  }
+  state.facesSeen = softBody.m_faces.size();
+  state.patch.orientation = surfaceOrientation(softBody);
+  state.patch.positions.reserve(softBody.m_nodes.size());
+  state.patch.previousPositions.reserve(softBody.m_nodes.size());
+  state.patch.checkedPositions.reserve(softBody.m_nodes.size());
+  state.patch.inverseMasses.reserve(softBody.m_nodes.size());
+  state.patch.nodeIds.reserve(softBody.m_nodes.size());
+  state.patch.faces.reserve(softBody.m_faces.size());
+  state.patch.faceIds.reserve(softBody.m_faces.size());
+  state.contacts.reserve(step.model.nodeCount());
+  state.corrections.reserve(softBody.m_nodes.size());
+  state.traversalStack.reserve(256);
+  state.candidateFaces.reserve(softBody.m_faces.size());
+  state.sides.resize(static_cast<Index>(softBody.m_nodes.size()), static_cast<Index>(softBody.m_faces.size()));
+  state.lastPositions.resize(softBody.m_nodes.size());
+  state.lastStep.assign(softBody.m_nodes.size(), 0);
+}
+
+// The soft faces near the piece into the pair's patch, and the skin the pair keeps this step.
+void ToolAlgorithm::gather(PieceStep& step) {
+  const ToolOptions& options = m_tool.m_options;
+  PairState& state = step.state;
+  btSoftBody& softBody = step.softBody;
+  step.fullSkin = options.skin >= 0 ? options.skin : Real(softBody.getCollisionShape()->getMargin());
+  Aabb reach = transformedBounds(step.model.bounds, step.pose);
+  if (step.swept) {
+    reach.include(transformedBounds(step.model.bounds, step.previousPose));
+  }
+  // Swept: the faces that meet the tool's whole motion during theirs, looked for first twice as far
+  // out as the soft nodes near the tool moved last step (the solver's pull adds to the motion), or
+  // as the soft body moved as a whole this step, if farther.
+  const Real motionBound = step.swept ? std::max(2 * state.softReach, softBodyMotion(softBody, state)) : 0;
+  const CollisionPass* pass = m_tool.m_pass;
+  const Real leafSlack = pass != nullptr ? faceLeafSlack(softBody, pass->nodeTravel()) : 0;
+  state.counters.facesWalked =
+      gatherPatch(softBody, reach.expanded(step.fullSkin), motionBound, leafSlack, step.swept, state);
+  step.skin = pairSkin(state, step.model, step.previousPose, step.fullSkin,
+                       options.skinGrowthSpeed * Real(step.timeStep));
+}
+
+// The contacts: swept over the step from where the sweep last left each node, or the paper's rays
+// and checks at the step's end.
+void ToolAlgorithm::detect(PieceStep& step) {
+  PairState& state = step.state;
+  const Index walked = state.counters.facesWalked;
+  if (step.swept) {
+    ++state.step;
+    SoftPatch& patch = state.patch;
+    patch.checkedPositions.resize(patch.vertexCount());
+    for (Index v = 0; v < patch.vertexCount(); ++v) {
+      const Index id = patch.nodeIds[v];
+      patch.checkedPositions[v] =
+          state.lastStep[id] + 1 == state.step ? state.lastPositions[id] : patch.previousPositions[v];
+    }
+    detectSwept(step.model, step.previousPose, step.pose, patch, step.skin, state.sides, m_tool.m_sweptWorkspace,
+                state.contacts, state.counters);
+  } else {
+    DetectionParameters parameters;
+    parameters.skin = step.skin;
+    parameters.filters = m_tool.m_options.filters;
+    if (parameters.filters.reverseRayLength <= 0) {
+      parameters.filters.reverseRayLength = length(toVec3(step.softBody.m_bounds[1] - step.softBody.m_bounds[0]));
+    }
+    const SoftBodyRayQuery reverseQuery(step.softBody, state.traversalStack);
+    detectContacts(step.model, step.pose, state.patch, &reverseQuery, parameters, state.history,
+                   m_tool.m_detectionWorkspace, state.contacts, state.counters);
+    state.excludedNodes[0].assign(m_tool.m_detectionWorkspace.excludedByCheck1().begin(),
+                                  m_tool.m_detectionWorkspace.excludedByCheck1().end());
+    state.excludedNodes[1].assign(m_tool.m_detectionWorkspace.excludedByCheck2().begin(),
+                                  m_tool.m_detectionWorkspace.excludedByCheck2().end());
+  }
+  state.counters.facesWalked = walked;  // detection starts its counters afresh
+}
+
+// The corrections for the contacts; the pose becomes the start of the pair's next step.
+void ToolAlgorithm::respond(PieceStep& step) {
+  PairState& state = step.state;
+  ResponseSettings response = m_tool.m_options.response;
+  response.guardNodes = response.guardNodes && !step.swept;  // swept detection tests every node itself
+  if (response.friction.enabled && response.friction.fromBodies) {
+    response.friction.staticCoefficient = pairFriction(step.softBody, step.toolBody);
+    response.friction.kineticCoefficient = response.friction.staticCoefficient;
+  }
+  computeResponse(step.model, step.pose, step.previousPose, state.patch, state.contacts, step.skin, step.timeStep,
+                  response, m_tool.m_responseWorkspace, state.corrections, state.wrench);
+  state.previousPose = step.pose;
+  state.hasPreviousPose = true;
+}
+
+// What the next sweep starts from: where this step leaves each node near the piece, and how far
+// those nodes moved (the response's pushes included, which become next step's velocity): next step
+// looks that much beyond the piece's swept box.
+void ToolAlgorithm::rememberSweep(PieceStep& step) {
+  PairState& state = step.state;
+  const SoftPatch& patch = state.patch;
+  state.softReach = 0;
+  for (Index v = 0; v < patch.vertexCount(); ++v) {
+    state.softReach = std::max(state.softReach, length(patch.positions[v] - patch.previousPositions[v]));
+    state.lastPositions[patch.nodeIds[v]] = patch.positions[v];
+    state.lastStep[patch.nodeIds[v]] = state.step;
+  }
+  for (const NodeCorrection& correction : state.corrections) {
+    const Index v = correction.vertex;
+    state.softReach =
+        std::max(state.softReach, length(patch.positions[v] + correction.displacement - patch.previousPositions[v]));
+    state.lastPositions[patch.nodeIds[v]] = patch.positions[v] + correction.displacement;
+  }
+}
+
+// Into Bullet: the solver's holds, the moves, a dynamic tool's reaction, and the force model.
+void ToolAlgorithm::write(PieceStep& step) {
+  const ToolOptions& options = m_tool.m_options;
+  PairState& state = step.state;
+  btRigidBody* dynamicBody = dynamicTool(step.toolBody);
+  if (options.response.kind == ResponseKind::Constraint && options.response.holdInSolver) {
+    computeHolds(step.model, step.pose, step.previousPose, state.patch, step.skin, state.corrections, step.swept,
+                 m_tool.m_responseWorkspace, state.holds);
+    // Only once the response has moved a node: the pass also changes how the body's other
+    // contacts are solved (a pressure body on the ground shook at twice stock's speed), which a
+    // tool merely near the body must not do.
+    if (!state.corrections.empty() && (options.response.friction.enabled || dynamicBody != nullptr)) {
+      makeContactsLast(step.softBody);
+    }
+  }
+  // Across the piece and its skin, and as far as a point of the piece travels in the step (at most
+  // its translation and, turning, the piece's extent): a longer move is a fault, not a correction.
+  const Real across = length(step.model.bounds.extent());
+  const Real pieceReach = 2 * across + length(step.pose.translation - step.previousPose.translation) + step.fullSkin;
+  const bool forceReacts = options.force.enabled && options.force.applyToDynamicTool;
+  const Real moved =
+      applyResponse(state, step.softBody, forceReacts ? nullptr : dynamicBody, step.timeStep, pieceReach);
+  if (m_tool.m_pass != nullptr) {
+    m_tool.m_pass->recordMoves(moved);
+  }
+  if (options.force.enabled) {
+    computeForces(state, step.softBody, step.pose, step.skin, step.timeStep, forceReacts ? dynamicBody : nullptr);
   }
 }
 
@@ -261,165 +474,6 @@ void ToolAlgorithm::computeForces(PairState& state, btSoftBody& softBody, const 
       reactingBody->activate();
     }
   }
-}
-
-void ToolAlgorithm::processPiece(PairState& state, btSoftBody& softBody, const btCollisionObject& toolBody,
-                                 const btCollisionObjectWrapper* toolWrap, const Pose& previousPose, const Pose& pose,
-                                 bool swept) {
-  state.clearResults();
-  state.live = true;
-
-  if (ignores(softBody, toolBody)) {
-    return;
-  }
-  state.stock = stockReason(softBody);
-  if (state.stock != StockReason::None) {
-    if (!swept) {
-      handToStock(softBody, toolWrap);  // a swept tool's own pair does it (processCollision)
-    }
-    return;
-  }
-  if (!isFinite(pose) || !isFinite(previousPose)) {
-    state.invalidPose = true;
-    if (!state.hasPreviousPose || !isFinite(state.previousPose)) {
-      return;
-    }
-    // The tissue stays held where the tool last was, as if it had stood still for a step: skipping
-    // the pair would let the soft body spring into the tool's space unopposed.
-    processValidPiece(state, softBody, toolBody, state.previousPose, state.previousPose, swept);
-    return;
-  }
-  processValidPiece(state, softBody, toolBody, previousPose, pose, swept);
-}
-
-void ToolAlgorithm::processValidPiece(PairState& state, btSoftBody& softBody, const btCollisionObject& toolBody,
-                                      const Pose& previousPose, const Pose& pose, bool swept) {
-  const auto start = Clock::now();
-  const ToolOptions& options = m_tool.m_options;
-  const ToolModel& model = m_tool.m_pieces[state.piece];
-
-  CollisionPass* pass = m_tool.m_pass;
-  if (ensureFaceTree(softBody) && pass != nullptr) {
-    pass->recordUnfittedTree();
-  }
-  if (state.facesSeen != softBody.m_faces.size()) {
-    state.facesSeen = softBody.m_faces.size();
-    state.patch.orientation = surfaceOrientation(softBody);
-    state.patch.positions.reserve(softBody.m_nodes.size());
-    state.patch.previousPositions.reserve(softBody.m_nodes.size());
-    state.patch.checkedPositions.reserve(softBody.m_nodes.size());
-    state.patch.inverseMasses.reserve(softBody.m_nodes.size());
-    state.patch.nodeIds.reserve(softBody.m_nodes.size());
-    state.patch.faces.reserve(softBody.m_faces.size());
-    state.patch.faceIds.reserve(softBody.m_faces.size());
-    state.contacts.reserve(model.nodeCount());
-    state.corrections.reserve(softBody.m_nodes.size());
-    state.traversalStack.reserve(256);
-    state.candidateFaces.reserve(softBody.m_faces.size());
-    state.sides.resize(static_cast<Index>(softBody.m_nodes.size()), static_cast<Index>(softBody.m_faces.size()));
-    state.lastPositions.resize(softBody.m_nodes.size());
-    state.lastStep.assign(softBody.m_nodes.size(), 0);
-  }
-
-  const Real fullSkin = options.skin >= 0 ? options.skin : Real(softBody.getCollisionShape()->getMargin());
-  const btScalar timeStep = softBody.m_sst.sdt;
-  Aabb reach = transformedBounds(model.bounds, pose);
-  if (swept) {
-    reach.include(transformedBounds(model.bounds, previousPose));
-  }
-  // Swept: the faces that meet the tool's whole motion during theirs, looked for first twice as far
-  // out as the soft nodes near the tool moved last step (the solver's pull adds to the motion), or
-  // as the soft body moved as a whole this step, if farther.
-  const Real motionBound = swept ? std::max(2 * state.softReach, softBodyMotion(softBody, state)) : 0;
-  const Real leafSlack = pass != nullptr ? faceLeafSlack(softBody, pass->nodeTravel()) : 0;
-  const Index walked = gatherPatch(softBody, reach.expanded(fullSkin), motionBound, leafSlack, swept, state);
-  const Real skin = pairSkin(state, model, previousPose, fullSkin, options.skinGrowthSpeed * Real(timeStep));
-
-  if (swept) {
-    ++state.step;
-    SoftPatch& patch = state.patch;
-    patch.checkedPositions.resize(patch.vertexCount());
-    for (Index v = 0; v < patch.vertexCount(); ++v) {
-      const Index id = patch.nodeIds[v];
-      patch.checkedPositions[v] =
-          state.lastStep[id] + 1 == state.step ? state.lastPositions[id] : patch.previousPositions[v];
-    }
-    detectSwept(model, previousPose, pose, state.patch, skin, state.sides, m_tool.m_sweptWorkspace, state.contacts,
-                state.counters);
-  } else {
-    DetectionParameters parameters;
-    parameters.skin = skin;
-    parameters.filters = options.filters;
-    if (parameters.filters.reverseRayLength <= 0) {
-      parameters.filters.reverseRayLength = length(toVec3(softBody.m_bounds[1] - softBody.m_bounds[0]));
-    }
-    const SoftBodyRayQuery reverseQuery(softBody, state.traversalStack);
-    detectContacts(model, pose, state.patch, &reverseQuery, parameters, state.history, m_tool.m_detectionWorkspace,
-                   state.contacts, state.counters);
-    state.excludedNodes[0].assign(m_tool.m_detectionWorkspace.excludedByCheck1().begin(),
-                                  m_tool.m_detectionWorkspace.excludedByCheck1().end());
-    state.excludedNodes[1].assign(m_tool.m_detectionWorkspace.excludedByCheck2().begin(),
-                                  m_tool.m_detectionWorkspace.excludedByCheck2().end());
-  }
-  state.counters.facesWalked = walked;
-  const auto detected = Clock::now();
-
-  ResponseSettings response = options.response;
-  response.guardNodes = response.guardNodes && !swept;  // swept detection tests every node itself
-  if (response.friction.enabled && response.friction.fromBodies) {
-    response.friction.staticCoefficient = pairFriction(softBody, toolBody);
-    response.friction.kineticCoefficient = response.friction.staticCoefficient;
-  }
-  computeResponse(model, pose, previousPose, state.patch, state.contacts, skin, timeStep, response,
-                  m_tool.m_responseWorkspace, state.corrections, state.wrench);
-  state.previousPose = pose;
-  state.hasPreviousPose = true;
-  if (swept) {
-    // How far the soft nodes near the tool move in a step, the response's pushes included (they
-    // become next step's velocity): next step looks that much beyond the tool's swept box.
-    state.softReach = 0;
-    const SoftPatch& patch = state.patch;
-    for (Index v = 0; v < patch.vertexCount(); ++v) {
-      state.softReach = std::max(state.softReach, length(patch.positions[v] - patch.previousPositions[v]));
-    }
-    for (Index v = 0; v < patch.vertexCount(); ++v) {
-      state.lastPositions[patch.nodeIds[v]] = patch.positions[v];
-      state.lastStep[patch.nodeIds[v]] = state.step;
-    }
-    for (const NodeCorrection& correction : state.corrections) {
-      const Index v = correction.vertex;
-      state.softReach = std::max(
-          state.softReach, length(patch.positions[v] + correction.displacement - patch.previousPositions[v]));
-      state.lastPositions[patch.nodeIds[v]] = patch.positions[v] + correction.displacement;
-    }
-  }
-  btRigidBody* dynamicBody = dynamicTool(toolBody);
-  if (options.response.kind == ResponseKind::Constraint && options.response.holdInSolver) {
-    computeHolds(model, pose, previousPose, state.patch, skin, state.corrections, swept, m_tool.m_responseWorkspace,
-                 state.holds);
-    // Only once the response has moved a node: the pass also changes how the body's other
-    // contacts are solved (a pressure body on the ground shook at twice stock's speed), which a
-    // tool merely near the body must not do.
-    if (!state.corrections.empty() && (options.response.friction.enabled || dynamicBody != nullptr)) {
-      makeContactsLast(softBody);
-    }
-  }
-  const bool forceReacts = options.force.enabled && options.force.applyToDynamicTool;
-  // Across the piece and its skin, and as far as a point of the piece travels in the step (at most
-  // its translation and, turning, the piece's extent): a longer move is a fault, not a correction.
-  const Real across = length(model.bounds.extent());
-  const Real pieceReach = 2 * across + length(pose.translation - previousPose.translation) + fullSkin;
-  const Real moved = applyResponse(state, softBody, forceReacts ? nullptr : dynamicBody, timeStep, pieceReach);
-  if (pass != nullptr) {
-    pass->recordMoves(moved);
-  }
-  if (options.force.enabled) {
-    computeForces(state, softBody, pose, skin, timeStep, forceReacts ? dynamicBody : nullptr);
-  }
-  releasePatch(state);
-  const auto responded = Clock::now();
-  state.detectionMicroseconds = microsecondsBetween(start, detected);
-  state.responseMicroseconds = microsecondsBetween(detected, responded);
 }
 
 }  // namespace thintool::detail

@@ -49,12 +49,17 @@ class ToolAlgorithm final : public btCollisionAlgorithm {
   void getAllContactManifolds(btManifoldArray&) override {}
 
  private:
-  // Detection, response and their application for one piece of the tool against softBody.
-  void processPiece(PairState& state, btSoftBody& softBody, const btCollisionObject& toolBody,
-                    const btCollisionObjectWrapper* toolWrap, const Pose& previousPose, const Pose& pose, bool swept);
-  // processPiece's work once the poses are known to be finite.
-  void processValidPiece(PairState& state, btSoftBody& softBody, const btCollisionObject& toolBody,
-                         const Pose& previousPose, const Pose& pose, bool swept);
+  struct PieceStep;
+  // Detection, response and their application for one piece of the tool against a soft body.
+  void processPiece(PieceStep& step, const btCollisionObjectWrapper* toolWrap);
+  // processPiece's work once the poses are known to be finite: the stages below, in order.
+  void processValidPiece(PieceStep& step);
+  void prepareBuffers(PieceStep& step);
+  void gather(PieceStep& step);
+  void detect(PieceStep& step);
+  void respond(PieceStep& step);
+  void rememberSweep(PieceStep& step);
+  void write(PieceStep& step);
   // The force model on the piece's contacts; reactingBody, when not null, receives the force.
   void computeForces(PairState& state, btSoftBody& softBody, const Pose& pose, Real skin, btScalar timeStep,
                      btRigidBody* reactingBody);
