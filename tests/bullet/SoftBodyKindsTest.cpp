@@ -192,8 +192,9 @@ double meanShapeDistance(const Measures& a, const Measures& b) {
 constexpr double kShapeNotCompared = -1;
 
 // shapeTolerance (m): the mean node distance allowed from stock's final shape, or
-// kShapeNotCompared where stock's own outcome turns on the order Bullet visits its pairs (a body
-// rolling off round tops), which a tool's registration changes (StockPairsTest.cpp).
+// kShapeNotCompared where the outcome turns on a symmetric start or on the order Bullet visits its
+// pairs, which a tool's registration changes (StockPairsTest.cpp): a body rolling off round tops, a
+// pressure ball bouncing; and for the cut cloth, which stock lets slide off after the cut.
 void expectNoWorseThanStock(const char* kind, const KindScene& scene, double shapeTolerance,
                             const StockPairs& expectedStock = {}) {
   const Measures stock = runScene(scene, false);
