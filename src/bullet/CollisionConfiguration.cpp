@@ -48,7 +48,7 @@ CollisionConfiguration& configurationOf(btCollisionWorld& world) {
 
 // Frees the algorithms of body's existing pairs, so that the next step recreates them through
 // the configuration, which then routes them to ThinTool or back to the stock handler.
-void reroutePairs(btCollisionWorld& world, const btRigidBody& body) {
+void reroutePairs(btCollisionWorld& world, const btCollisionObject& body) {
   // The pair cache takes a mutable proxy, though cleaning it changes only the pairs.
   btBroadphaseProxy* proxy = const_cast<btBroadphaseProxy*>(body.getBroadphaseHandle());
   if (proxy != nullptr) {
@@ -141,17 +141,17 @@ btCollisionAlgorithmCreateFunc* CollisionConfiguration::getCollisionAlgorithmCre
   return btSoftBodyRigidBodyCollisionConfiguration::getCollisionAlgorithmCreateFunc(proxyType0, proxyType1);
 }
 
-Tool& CollisionConfiguration::addTool(btRigidBody& body, const ToolOptions& requested) {
+Tool& CollisionConfiguration::addTool(btCollisionObject& body, const ToolOptions& requested) {
   ToolOptions options = requested;
   if (options.name.empty()) {
     options.name = "tool " + std::to_string(m_toolsCreated + 1);
   }
   auto fail = [&options](const std::string& problem) { throw Error("tool '" + options.name + "': " + problem); };
   if (const Tool* existing = findTool(body)) {
-    fail("this rigid body is already registered, as tool '" + existing->name() + "'");
+    fail("this body is already registered, as tool '" + existing->name() + "'");
   }
   if (body.getCollisionShape() == nullptr) {
-    fail("the rigid body has no collision shape");
+    fail("the body has no collision shape");
   }
   const std::string optionProblem = validateToolOptions(options);
   if (!optionProblem.empty()) {
@@ -183,7 +183,7 @@ Tool& CollisionConfiguration::addTool(btRigidBody& body, const ToolOptions& requ
   return registered;
 }
 
-bool CollisionConfiguration::removeTool(const btRigidBody& body) {
+bool CollisionConfiguration::removeTool(const btCollisionObject& body) {
   const auto found = m_tools.find(&body);
   if (found == m_tools.end()) {
     return false;
@@ -198,7 +198,7 @@ Tool* CollisionConfiguration::findTool(const btCollisionObject& object) const {
   return found == m_tools.end() ? nullptr : found->second.get();
 }
 
-Tool& addTool(btCollisionWorld& world, btRigidBody& body, const ToolOptions& options) {
+Tool& addTool(btCollisionWorld& world, btCollisionObject& body, const ToolOptions& options) {
   CollisionConfiguration* configuration = nullptr;
   try {
     configuration = &configurationOf(world);
@@ -215,7 +215,7 @@ Tool& addTool(btCollisionWorld& world, btRigidBody& body, const ToolOptions& opt
   return tool;
 }
 
-bool removeTool(btCollisionWorld& world, const btRigidBody& body) {
+bool removeTool(btCollisionWorld& world, const btCollisionObject& body) {
   CollisionConfiguration& configuration = configurationOf(world);
   Tool* tool = configuration.findTool(body);
   if (tool == nullptr) {
@@ -230,7 +230,7 @@ bool removeTool(btCollisionWorld& world, const btRigidBody& body) {
   return configuration.removeTool(body);
 }
 
-Tool* findTool(btCollisionWorld& world, const btRigidBody& body) {
+Tool* findTool(btCollisionWorld& world, const btCollisionObject& body) {
   CollisionConfiguration* configuration = findConfiguration(world);
   return configuration != nullptr ? configuration->findTool(body) : nullptr;
 }

@@ -19,7 +19,7 @@ PairState::PairState() = default;
 PairState::~PairState() = default;
 }  // namespace detail
 
-Tool::Tool(btRigidBody& body, const ToolOptions& options, std::vector<ToolModel> pieces,
+Tool::Tool(btCollisionObject& body, const ToolOptions& options, std::vector<ToolModel> pieces,
            std::vector<Pose> pieceTransforms)
     : m_body(body), m_options(options), m_pieces(std::move(pieces)), m_pieceTransforms(std::move(pieceTransforms)) {
   Index largest = 0;
@@ -46,8 +46,11 @@ void Tool::trackMotion() {
   m_jumpNext = false;
 }
 
+btRigidBody* Tool::rigidBody() const { return btRigidBody::upcast(&m_body); }
+
 void Tool::bodyMotion(Pose& outPrevious, Pose& outCurrent) const {
-  if (!m_body.isStaticOrKinematicObject()) {
+  const btRigidBody* rigid = rigidBody();
+  if (rigid != nullptr && !rigid->isStaticOrKinematicObject()) {
     outPrevious = toPose(m_body.getWorldTransform());
     outCurrent = toPose(m_body.getInterpolationWorldTransform());
     return;

@@ -449,5 +449,34 @@ TEST(SoftBodyKinds, BodiesCreatedInsideTheMarginOfATool) {
   expectNoWorseThanStock("bodies created in the margin", scene, kShapeNotCompared);
 }
 
+// A static ground that is a plain btCollisionObject, as many Bullet programs build one, is a tool
+// like a rigid body: the ball dropped on it stays out of it.
+TEST(SoftBodyKinds, APlainCollisionObjectIsAStaticTool) {
+  KindWorld w(true);
+  btBoxShape groundShape(btVector3(2, 0.5, 2));
+  btCollisionObject ground;
+  ground.setCollisionShape(&groundShape);
+  ground.setWorldTransform(at(btVector3(0, -0.5, 0)));
+  w.world->addCollisionObject(&ground);
+  Tool& tool = addTool(*w.world, ground);
+  EXPECT_EQ(findTool(*w.world, ground), &tool);
+  EXPECT_EQ(tool.rigidBody(), nullptr);
+  btSoftBody& body = w.addSoft(ball(w.info(), btVector3(0, 0.8, 0), 0.5, 128));
+  int stepsWithContacts = 0;
+  double deepest = 0;
+  for (int step = 0; step < 120; ++step) {
+    w.world->stepSimulation(kStep, 1, kStep);
+    stepsWithContacts += tool.report().contacts.empty() ? 0 : 1;
+    for (int i = 0; i < body.m_nodes.size(); ++i) {
+      ASSERT_TRUE(std::isfinite(body.m_nodes[i].m_x.length2()));
+      deepest = std::max(deepest, depthIn(groundShape, ground.getWorldTransform(), body.m_nodes[i].m_x));
+    }
+  }
+  EXPECT_GT(stepsWithContacts, 0);
+  EXPECT_EQ(deepest, 0);
+  EXPECT_TRUE(removeTool(*w.world, ground));
+  w.world->removeCollisionObject(&ground);
+}
+
 }  // namespace
 }  // namespace thintool

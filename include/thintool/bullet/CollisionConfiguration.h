@@ -42,8 +42,8 @@ namespace detail {
 class CollisionPass;
 void beginCollisionPass(btCollisionWorld& world);
 }  // namespace detail
-Tool& addTool(btCollisionWorld& world, btRigidBody& body, const ToolOptions& options);
-bool removeTool(btCollisionWorld& world, const btRigidBody& body);
+Tool& addTool(btCollisionWorld& world, btCollisionObject& body, const ToolOptions& options);
+bool removeTool(btCollisionWorld& world, const btCollisionObject& body);
 
 class CollisionConfiguration : public btSoftBodyRigidBodyCollisionConfiguration {
  public:
@@ -66,11 +66,11 @@ class CollisionConfiguration : public btSoftBodyRigidBodyCollisionConfiguration 
  private:
   // Registration goes through thintool::addTool/removeTool, which also re-route the body's
   // existing pairs; the configuration alone cannot reach the broadphase.
-  friend Tool& addTool(btCollisionWorld&, btRigidBody&, const ToolOptions&);
-  friend bool removeTool(btCollisionWorld&, const btRigidBody&);
+  friend Tool& addTool(btCollisionWorld&, btCollisionObject&, const ToolOptions&);
+  friend bool removeTool(btCollisionWorld&, const btCollisionObject&);
   friend void detail::beginCollisionPass(btCollisionWorld&);
-  Tool& addTool(btRigidBody& body, const ToolOptions& options);
-  bool removeTool(const btRigidBody& body);
+  Tool& addTool(btCollisionObject& body, const ToolOptions& options);
+  bool removeTool(const btCollisionObject& body);
 
   struct CreateFunc;
   btCollisionAlgorithm* createAlgorithm(btCollisionAlgorithmConstructionInfo& info, const btCollisionObjectWrapper* body0,
@@ -88,21 +88,23 @@ class CollisionConfiguration : public btSoftBodyRigidBodyCollisionConfiguration 
 };
 
 /// Registers body as a thin tool of world, whose dispatcher must have been built with a
-/// thintool::CollisionConfiguration. Builds the tool model from the body's shape: btBoxShape,
+/// thintool::CollisionConfiguration: a btRigidBody (static, kinematic or dynamic), or a plain
+/// btCollisionObject, which is static or moved by the program like a kinematic body. Builds the
+/// tool model from the body's shape: btBoxShape,
 /// btConvexHullShape, any other convex shape through the hull of its support points, and each
 /// convex child of a btCompoundShape. The body stays awake (DISABLE_DEACTIVATION), since a
 /// sleeping tool's pairs are not processed. A kinematic tool is met at the pose of the step's end,
 /// as its motion state gave it; a dynamic tool at its pose at the start of the step, as Bullet's
 /// stock handler meets it, and it receives the tissue's reaction as impulses. Throws
 /// thintool::Error naming the tool and the problem.
-Tool& addTool(btCollisionWorld& world, btRigidBody& body, const ToolOptions& options = ToolOptions());
+Tool& addTool(btCollisionWorld& world, btCollisionObject& body, const ToolOptions& options = ToolOptions());
 
 /// Unregisters body from world's configuration; returns whether it was a tool. Call it before
 /// deleting a tool's body.
-bool removeTool(btCollisionWorld& world, const btRigidBody& body);
+bool removeTool(btCollisionWorld& world, const btCollisionObject& body);
 
 /// The tool registered for body, or nullptr (also in a world built without ThinTool's
 /// configuration).
-Tool* findTool(btCollisionWorld& world, const btRigidBody& body);
+Tool* findTool(btCollisionWorld& world, const btCollisionObject& body);
 
 }  // namespace thintool

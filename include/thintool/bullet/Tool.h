@@ -106,8 +106,8 @@ struct ToolForce {
 
 class Tool;
 struct ToolOptions;
-Tool& addTool(btCollisionWorld& world, btRigidBody& body, const ToolOptions& options);
-bool removeTool(btCollisionWorld& world, const btRigidBody& body);
+Tool& addTool(btCollisionWorld& world, btCollisionObject& body, const ToolOptions& options);
+bool removeTool(btCollisionWorld& world, const btCollisionObject& body);
 
 struct ToolStepReport {
   std::vector<ToolContact> contacts;
@@ -134,14 +134,17 @@ class SweptProxy;
 /// Created by addTool(); owned by the world's thintool::CollisionConfiguration.
 class Tool {
  public:
-  Tool(btRigidBody& body, const ToolOptions& options, std::vector<ToolModel> pieces,
+  Tool(btCollisionObject& body, const ToolOptions& options, std::vector<ToolModel> pieces,
        std::vector<Pose> pieceTransforms);
   ~Tool();
   Tool(const Tool&) = delete;
   Tool& operator=(const Tool&) = delete;
 
   const std::string& name() const { return m_options.name; }
-  btRigidBody& body() const { return m_body; }
+  btCollisionObject& body() const { return m_body; }
+  /// The body as a btRigidBody, or null for a plain btCollisionObject (a static tool, or one the
+  /// program moves).
+  btRigidBody* rigidBody() const;
   const ToolOptions& options() const { return m_options; }
 
   /// Convex pieces: one for a convex shape, one per child for a btCompoundShape.
@@ -169,8 +172,8 @@ class Tool {
   friend class detail::SweptProxy;
   friend class CollisionConfiguration;
   friend class SoftBodySolver;
-  friend Tool& addTool(btCollisionWorld&, btRigidBody&, const ToolOptions&);
-  friend bool removeTool(btCollisionWorld&, const btRigidBody&);
+  friend Tool& addTool(btCollisionWorld&, btCollisionObject&, const ToolOptions&);
+  friend bool removeTool(btCollisionWorld&, const btCollisionObject&);
   detail::PairState& pairState(btSoftBody& softBody, Index piece);
   /// The soft body's rest shape, captured now if it has none or its node count changed.
   RestShape& restShape(const btSoftBody& softBody);
@@ -181,7 +184,7 @@ class Tool {
   /// Called once per simulation step, when Bullet updates the proxy's box: moves "now" to "before".
   void trackMotion();
 
-  btRigidBody& m_body;
+  btCollisionObject& m_body;
   ToolOptions m_options;
   std::vector<ToolModel> m_pieces;
   std::vector<Pose> m_pieceTransforms;
