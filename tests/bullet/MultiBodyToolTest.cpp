@@ -1,0 +1,110 @@
+// SPDX-License-Identifier: Zlib
+// Copyright (c) 2026 The ThinTool developers
+
+// A link of a Featherstone multibody as a tool, in Bullet's soft–multibody world (PyBullet's
+// default soft world): a thin finger on a prismatic joint, driven down by a motor into a soft ball.
+// The link collider is registered like any collision object; the multibody moves it, and ThinTool
+// follows it as it follows a kinematic body (the finger takes no reaction from the tissue).
+
+#include <thintool/thintool.h>
+
+#include <BulletCollision/NarrowPhaseCollision/btGjkEpa2.h>
+#include <BulletDynamics/Featherstone/btMultiBody.h>
+#include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>
+#include <BulletDynamics/Featherstone/btMultiBodyJointMotor.h>
+#include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
+#include <BulletSoftBody/btSoftBodyHelpers.h>
+#include <BulletSoftBody/btSoftMultiBodyDynamicsWorld.h>
+#include <btBulletDynamicsCommon.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+
+namespace thintool {
+namespace {
+
+constexpr btScalar kStep = btScalar(1) / 60;
+
+double depthIn(const btConvexShape& shape, const btTransform& pose, const btVector3& point) {
+  btGjkEpaSolver2::sResults results;
+  const btScalar distance = btGjkEpaSolver2::SignedDistance(point, 0, &shape, pose, results);
+  return distance < 0 ? -double(distance) : 0;
+}
+
+TEST(MultiBodyTool, AFingerLinkPressedIntoABallKeepsItsNodesOut) {
+  CollisionConfiguration configuration;
+  btCollisionDispatcher dispatcher(&configuration);
+  btDbvtBroadphase broadphase;
+  btMultiBodyConstraintSolver solver;
+  SoftBodySolver softSolver(configuration);
+  btSoftMultiBodyDynamicsWorld world(&dispatcher, &broadphase, &solver, &configuration, &softSolver);
+  world.setGravity(btVector3(0, -10, 0));
+  world.getWorldInfo().m_gravity = btVector3(0, -10, 0);
+  world.getWorldInfo().m_sparsesdf.Initialize();
+
+  btBoxShape groundShape(btVector3(5, 0.5, 5));
+  btRigidBody ground(btRigidBody::btRigidBodyConstructionInfo(0, nullptr, &groundShape));
+  ground.setWorldTransform(btTransform(btQuaternion::getIdentity(), btVector3(0, -0.5, 0)));
+  world.addRigidBody(&ground);
+
+  btSoftBody* ball = btSoftBodyHelpers::CreateEllipsoid(world.getWorldInfo(), btVector3(0, 0.5, 0),
+                                                        btVector3(0.5, 0.5, 0.5), 256);
+  ball->m_materials[0]->m_kLST = 0.5;
+  ball->m_cfg.piterations = 4;
+  ball->m_cfg.kPR = 50;
+  ball->getCollisionShape()->setMargin(0.02);
+  ball->setTotalMass(1);
+  world.addSoftBody(ball);
+
+  // A fixed base 1.5 m up and one prismatic link along -y carrying a plate 2 cm thick.
+  btMultiBody finger(1, 0, btVector3(0, 0, 0), true, false);
+  finger.setBasePos(btVector3(0, 1.5, 0));
+  btBoxShape plateShape(btVector3(0.2, 0.01, 0.2));
+  btVector3 inertia;
+  plateShape.calculateLocalInertia(0.5, inertia);
+  finger.setupPrismatic(0, 0.5, inertia, -1, btQuaternion::getIdentity(), btVector3(0, -1, 0),
+                        btVector3(0, 0, 0), btVector3(0, 0, 0), true);
+  finger.finalizeMultiDof();
+  world.addMultiBody(&finger);
+  btMultiBodyLinkCollider collider(&finger, 0);
+  collider.setCollisionShape(&plateShape);
+  finger.getLink(0).m_collider = &collider;
+  btAlignedObjectArray<btQuaternion> worldToLocal;
+  btAlignedObjectArray<btVector3> localOrigin;
+  finger.updateCollisionObjectWorldTransforms(worldToLocal, localOrigin);
+  world.addCollisionObject(&collider, btBroadphaseProxy::DefaultFilter, btBroadphaseProxy::AllFilter);
+  // Down at 0.5 m/s, whatever the ball pushes back: the motor holds the speed.
+  btMultiBodyJointMotor motor(&finger, 0, btScalar(0.5), btScalar(1000));
+  world.addMultiBodyConstraint(&motor);
+
+  Tool& tool = addTool(world, collider);
+  EXPECT_EQ(tool.rigidBody(), nullptr);
+  int stepsWithContacts = 0;
+  double deepest = 0;
+  double lowest = 10;
+  for (int step = 0; step < 120; ++step) {
+    world.stepSimulation(kStep, 1, kStep);
+    stepsWithContacts += tool.report().contacts.empty() ? 0 : 1;
+    lowest = std::min(lowest, double(collider.getWorldTransform().getOrigin().y()));
+    for (int i = 0; i < ball->m_nodes.size(); ++i) {
+      ASSERT_TRUE(std::isfinite(ball->m_nodes[i].m_x.length2())) << "step " << step;
+      deepest = std::max(deepest, depthIn(plateShape, collider.getWorldTransform(), ball->m_nodes[i].m_x));
+    }
+  }
+  EXPECT_LT(lowest, 0.8) << "the finger went into the ball (its top at 1 m)";
+  EXPECT_GT(stepsWithContacts, 0);
+  EXPECT_EQ(deepest, 0) << "no soft node inside the finger at the end of a step";
+  EXPECT_TRUE(tool.report().diagnostics.lastWord.ran);
+
+  removeTool(world, collider);
+  world.removeMultiBodyConstraint(&motor);
+  world.removeCollisionObject(&collider);
+  world.removeMultiBody(&finger);
+  world.removeSoftBody(ball);
+  delete ball;
+  world.removeRigidBody(&ground);
+}
+
+}  // namespace
+}  // namespace thintool
