@@ -272,10 +272,7 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
   // A dynamic tool takes the moved nodes' reaction, unless the force model is what reacts on it
   // (ForceSettings::applyToDynamicTool), as for the collision stage's own moves.
   const ForceSettings& force = tool.m_options.force;
-  btRigidBody* dynamicTool = tool.rigidBody();
-  if (dynamicTool != nullptr && (dynamicTool->isStaticOrKinematicObject() || (force.enabled && force.applyToDynamicTool))) {
-    dynamicTool = nullptr;
-  }
+  btRigidBody* dynamicTool = force.enabled && force.applyToDynamicTool ? nullptr : tool.dynamicBody();
   bool movedAny = false;
   for (Index v = 0; v < m_patch.vertexCount(); ++v) {
     const Index id = m_patch.nodeIds[v];

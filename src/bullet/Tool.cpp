@@ -48,9 +48,13 @@ void Tool::trackMotion() {
 
 btRigidBody* Tool::rigidBody() const { return btRigidBody::upcast(&m_body); }
 
+btRigidBody* Tool::dynamicBody() const {
+  btRigidBody* rigid = rigidBody();
+  return rigid != nullptr && !rigid->isStaticOrKinematicObject() ? rigid : nullptr;
+}
+
 void Tool::bodyMotion(Pose& outPrevious, Pose& outCurrent) const {
-  const btRigidBody* rigid = rigidBody();
-  if (rigid != nullptr && !rigid->isStaticOrKinematicObject()) {
+  if (dynamicBody() != nullptr) {
     outPrevious = toPose(m_body.getWorldTransform());
     outCurrent = toPose(m_body.getInterpolationWorldTransform());
     return;

@@ -145,6 +145,8 @@ class Tool {
   /// The body as a btRigidBody, or null for a plain btCollisionObject (a static tool, or one the
   /// program moves).
   btRigidBody* rigidBody() const;
+  /// The body when it is a dynamic btRigidBody, which takes the tissue's reaction; else null.
+  btRigidBody* dynamicBody() const;
   const ToolOptions& options() const { return m_options; }
 
   /// Convex pieces: one for a convex shape, one per child for a btCompoundShape.
