@@ -185,12 +185,6 @@ Real pairSkin(PairState& state, const ToolModel& model, const Pose& startPose, R
   return state.skinInEffect;
 }
 
-btRigidBody* dynamicTool(const btCollisionObject& toolObject) {
-  const btRigidBody* rigidBody = btRigidBody::upcast(&toolObject);
-  return rigidBody != nullptr && !rigidBody->isStaticOrKinematicObject() ? const_cast<btRigidBody*>(rigidBody)
-                                                                          : nullptr;
-}
-
 }  // namespace
 
 ToolAlgorithm::ToolAlgorithm(const btCollisionAlgorithmConstructionInfo& info, Tool& tool, Mode mode,
@@ -219,6 +213,7 @@ struct ToolAlgorithm::PieceStep {
   btScalar timeStep = 0;
   Real fullSkin = 0;  ///< ToolOptions::skin, or the soft body's margin (m)
   Real skin = 0;      ///< what the pair keeps this step (pairSkin), at most fullSkin (m)
+  Index facesWalked = 0;  ///< soft faces the gather's walk met
   Clock::time_point start{};
 };
 
@@ -345,8 +340,7 @@ void ToolAlgorithm::gather(PieceStep& step) {
   const Real motionBound = step.swept ? std::max(2 * state.softReach, softBodyMotion(softBody, state)) : 0;
   const CollisionPass* pass = m_tool.m_pass;
   const Real leafSlack = pass != nullptr ? faceLeafSlack(softBody, pass->nodeTravel()) : 0;
-  state.counters.facesWalked =
-      gatherPatch(softBody, reach.expanded(step.fullSkin), motionBound, leafSlack, step.swept, state);
+  step.facesWalked = gatherPatch(softBody, reach.expanded(step.fullSkin), motionBound, leafSlack, step.swept, state);
   step.skin = pairSkin(state, step.model, step.previousPose, step.fullSkin,
                        options.skinGrowthSpeed * Real(step.timeStep));
 }
@@ -355,7 +349,6 @@ void ToolAlgorithm::gather(PieceStep& step) {
 // and checks at the step's end.
 void ToolAlgorithm::detect(PieceStep& step) {
   PairState& state = step.state;
-  const Index walked = state.counters.facesWalked;
   if (step.swept) {
     ++state.step;
     SoftPatch& patch = state.patch;
@@ -382,7 +375,7 @@ void ToolAlgorithm::detect(PieceStep& step) {
     state.excludedNodes[1].assign(m_tool.m_detectionWorkspace.excludedByCheck2().begin(),
                                   m_tool.m_detectionWorkspace.excludedByCheck2().end());
   }
-  state.counters.facesWalked = walked;  // detection starts its counters afresh
+  state.counters.facesWalked = step.facesWalked;
 }
 
 // The corrections for the contacts; the pose becomes the start of the pair's next step.
@@ -424,7 +417,7 @@ void ToolAlgorithm::rememberSweep(PieceStep& step) {
 void ToolAlgorithm::write(PieceStep& step) {
   const ToolOptions& options = m_tool.m_options;
   PairState& state = step.state;
-  btRigidBody* dynamicBody = dynamicTool(step.toolBody);
+  btRigidBody* dynamicBody = m_tool.dynamicBody();
   if (options.response.kind == ResponseKind::Constraint && options.response.holdInSolver) {
     computeHolds(step.model, step.pose, step.previousPose, state.patch, step.skin, state.corrections, step.swept,
                  m_tool.m_responseWorkspace, state.holds);
