@@ -246,8 +246,8 @@ btSoftBody* facelessTetraCube(btSoftBodyWorldInfo& info, const btVector3& low, b
       for (int i = 0; i < cells; ++i) {
         // Five tetrahedra a cell: four cut off at alternate corners, one in the middle; neighbouring
         // cells alternate so that their shared faces split alike.
-        const int c[8] = {id(i, j, k),         id(i + 1, j, k),         id(i, j + 1, k),         id(i + 1, j + 1, k),
-                          id(i, j, k + 1),     id(i + 1, j, k + 1),     id(i, j + 1, k + 1),     id(i + 1, j + 1, k + 1)};
+        const int c[8] = {id(i, j, k),     id(i + 1, j, k),     id(i, j + 1, k),     id(i + 1, j + 1, k),
+                          id(i, j, k + 1), id(i + 1, j, k + 1), id(i, j + 1, k + 1), id(i + 1, j + 1, k + 1)};
         const bool odd = ((i + j + k) & 1) != 0;
         const int even[5][4] = {{0, 1, 2, 4}, {1, 3, 2, 7}, {1, 4, 5, 7}, {2, 4, 6, 7}, {1, 2, 4, 7}};
         const int flipped[5][4] = {{1, 0, 3, 5}, {0, 2, 3, 6}, {0, 4, 5, 6}, {3, 5, 6, 7}, {0, 3, 5, 6}};
@@ -279,7 +279,8 @@ btSoftBody* ball(btSoftBodyWorldInfo& info, const btVector3& centre, btScalar ra
 }
 
 btSoftBody* cloth(btSoftBodyWorldInfo& info, btScalar height, btScalar half, int resolution) {
-  btSoftBody* body = btSoftBodyHelpers::CreatePatch(info, btVector3(-half, height, -half), btVector3(half, height, -half),
+  btSoftBody* body = btSoftBodyHelpers::CreatePatch(info, btVector3(-half, height, -half),
+                                                    btVector3(half, height, -half),
                                                     btVector3(-half, height, half), btVector3(half, height, half),
                                                     resolution, resolution, 0, true);
   body->m_cfg.piterations = 4;
@@ -409,7 +410,7 @@ TEST(SoftBodyKinds, ClothCutWhileLyingOnABox) {
     w.addRigid(new btBoxShape(btVector3(0.5, 0.2, 0.5)), at(btVector3(0, 0.2, 0)));
     w.addSoft(cloth(w.info(), 0.7, 0.7, 15));
   };
-  // Mid-run, cut the links along a line across the cloth: Bullet adds nodes and faces.
+  // Mid-run, cut a link across x = 0.05 m, under the cloth's contact: Bullet adds a node and faces.
   scene.during = [](KindWorld& w, int step) {
     if (step != 90) return;
     btSoftBody& body = *w.softBodies[0];

@@ -29,8 +29,9 @@
 ///   One that does not (pierced, or gone through a thin piece between its nodes) is translated
 ///   back to such a side along the axis that best trades the move's length against how well it
 ///   points back the way the face came, length / (0.1 + cos): the shortest move alone lets two
-///   faces that share an edge along a needle push it to opposite sides round after round. A face that still meets the piece goes instead straight
-///   back along its own motion relative to the piece, until it clears, when that is the shorter
+///   faces that share an edge along a needle push it to opposite sides round after round. A face
+///   that still meets the piece goes instead straight back along its own motion relative to the
+///   piece, until it clears, when that is the shorter
 ///   move: a face whose only side at the start lay across a long needle went along the needle's
 ///   length. A face that already met the piece at the start goes back that way; without such a
 ///   motion, to the side it was nearest to.
