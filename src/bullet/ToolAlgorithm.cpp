@@ -5,6 +5,7 @@
 #include "CollisionPass.h"
 #include "PairState.h"
 #include "SoftSurface.h"
+#include "ToolReaction.h"
 
 #include <thintool/bullet/Convert.h>
 #include <thintool/bullet/Tool.h>
@@ -124,10 +125,11 @@ Real applyResponse(PairState& state, btSoftBody& softBody, btRigidBody* dynamicB
     const btVector3 displacement = toBt(correction.displacement);
     node.m_x += displacement;
     state.patch.positions[correction.vertex] += correction.displacement;
-    if (dynamicBody != nullptr) {
-      // The node's change of momentum, taken from the tool.
-      dynamicBody->applyImpulse(displacement * (-1 / (node.m_im * timeStep)),
-                                node.m_x - dynamicBody->getCenterOfMassPosition());
+    if (dynamicBody != nullptr && node.m_im > 0) {
+      // The velocity Bullet's solve would have given the node where it was predicted to be.
+      const btScalar inverseStep = 1 / timeStep;
+      applyNodeReaction(*dynamicBody, node.m_x, displacement, node.m_im, inverseStep,
+                        (node.m_x - displacement - node.m_q) * inverseStep);
     }
   }
   if (dynamicBody != nullptr && !state.corrections.empty()) {

@@ -1,0 +1,90 @@
+// SPDX-License-Identifier: Zlib
+// Copyright (c) 2026 The ThinTool developers
+#include "../../src/bullet/ToolReaction.h"
+
+#include <btBulletDynamicsCommon.h>
+
+#include <gtest/gtest.h>
+
+#include <memory>
+
+namespace thintool::detail {
+namespace {
+
+constexpr btScalar kStep = btScalar(1.0 / 60);
+
+// A dynamic box at the origin moving at velocity, not turning.
+std::unique_ptr<btRigidBody> movingBox(btBoxShape& shape, btScalar mass, const btVector3& velocity) {
+  btVector3 inertia(0, 0, 0);
+  shape.calculateLocalInertia(mass, inertia);
+  auto body = std::make_unique<btRigidBody>(btRigidBody::btRigidBodyConstructionInfo(mass, nullptr, &shape, inertia));
+  body->setLinearVelocity(velocity);
+  return body;
+}
+
+TEST(ToolReaction, AHeavyToolGivesUpTheNodesMomentum) {
+  btBoxShape shape(btVector3(0.2f, 0.01f, 0.2f));
+  auto tool = movingBox(shape, 10, btVector3(0, -1, 0));
+  // A 10 g node at rest under the plate, pushed 1 cm down by it.
+  const btVector3 displacement(0, btScalar(-0.01), 0);
+  const btScalar impulse = applyNodeReaction(*tool, btVector3(0, btScalar(-0.02), 0), displacement,
+                                             100, 1 / kStep, btVector3(0, 0, 0));
+  EXPECT_NEAR(impulse, 0.01 * 0.01 / kStep, 1e-6);
+  EXPECT_NEAR(tool->getLinearVelocity().y(), -1 + impulse / 10, 1e-6);
+}
+
+TEST(ToolReaction, ALightToolIsNeverSentBack) {
+  btBoxShape shape(btVector3(0.2f, 0.01f, 0.2f));
+  auto tool = movingBox(shape, btScalar(0.001), btVector3(0, -1, 0));
+  // A 1 kg node at rest, a thousand times the plate, moved along with it: the node's momentum
+  // would send the plate up at 999 m/s; an inelastic collision all but stops it.
+  const btVector3 displacement(0, -kStep, 0);
+  applyNodeReaction(*tool, btVector3(0, btScalar(-0.02), 0), displacement, 1, 1 / kStep, btVector3(0, 0, 0));
+  EXPECT_LE(tool->getLinearVelocity().y(), 0);
+  EXPECT_GE(tool->getLinearVelocity().y(), btScalar(-0.01));
+  EXPECT_NEAR(tool->getAngularVelocity().length(), 0, 1e-6);
+}
+
+TEST(ToolReaction, AThinNeedleIsNotSpunAboutItsAxis) {
+  // A 1 kg needle 2 mm thick along x, moving at 1 m/s along z: almost no inertia about its axis.
+  // It pushes a 1 kg node at rest at its surface, off its centre line.
+  btBoxShape shape(btVector3(0.25f, 0.001f, 0.001f));
+  auto tool = movingBox(shape, 1, btVector3(0, 0, 1));
+  const btVector3 nodePosition(0, btScalar(0.001), btScalar(0.001));
+  const btVector3 arm = nodePosition - tool->getCenterOfMassPosition();
+  const btVector3 displacement(0, 0, btScalar(0.01));
+  applyNodeReaction(*tool, nodePosition, displacement, 1, 1 / kStep, btVector3(0, 0, 0));
+  const btScalar along = tool->getVelocityInLocalPoint(arm).z();
+  EXPECT_GE(along, btScalar(-1e-4)) << "sent back";
+  EXPECT_LE(along, btScalar(1 + 1e-4)) << "pushed on";
+  // Its effective mass there is well under the node's: the collision takes most of its speed.
+  EXPECT_LT(along, btScalar(0.9));
+}
+
+TEST(ToolReaction, ANodeThatCannotGiveWayStopsTheTool) {
+  btBoxShape shape(btVector3(0.2f, 0.01f, 0.2f));
+  auto tool = movingBox(shape, 2, btVector3(0, -3, 0));
+  applyNodeReaction(*tool, btVector3(0, btScalar(-0.02), 0), btVector3(0, btScalar(-0.001), 0), 0, 1 / kStep, btVector3(0, 0, 0));
+  EXPECT_NEAR(tool->getLinearVelocity().y(), 0, 1e-5);
+}
+
+TEST(ToolReaction, ANodeLeavingFasterThanTheToolTakesNothing) {
+  btBoxShape shape(btVector3(0.2f, 0.01f, 0.2f));
+  auto tool = movingBox(shape, 1, btVector3(0, 0, 0));
+  const btVector3 displacement(0, btScalar(-0.001), 0);
+  const btScalar impulse = applyNodeReaction(*tool, btVector3(0, btScalar(-0.02), 0), displacement, 1, 1 / kStep,
+                                             btVector3(0, -5, 0));
+  EXPECT_EQ(impulse, 0);
+  EXPECT_EQ(tool->getLinearVelocity().length2(), 0);
+}
+
+TEST(ToolReaction, NoMoveOrABadMassIsNoReaction) {
+  btBoxShape shape(btVector3(0.2f, 0.01f, 0.2f));
+  auto tool = movingBox(shape, 1, btVector3(0, -1, 0));
+  EXPECT_EQ(applyNodeReaction(*tool, btVector3(0, 0, 0), btVector3(0, 0, 0), 1, 1 / kStep, btVector3(0, 0, 0)), 0);
+  EXPECT_EQ(applyNodeReaction(*tool, btVector3(0, 0, 0), btVector3(0, -1, 0), -1, 1 / kStep, btVector3(0, 0, 0)), 0);
+  EXPECT_EQ(tool->getLinearVelocity(), btVector3(0, -1, 0));
+}
+
+}  // namespace
+}  // namespace thintool::detail
