@@ -3,6 +3,7 @@
 #include <thintool/bullet/SoftBodySolver.h>
 
 #include "SoftSurface.h"
+#include "ToolReaction.h"
 
 #include <thintool/bullet/CollisionConfiguration.h>
 #include <thintool/bullet/Convert.h>
@@ -172,6 +173,36 @@ void SoftBodySolver::updateFaceReach(SoftBodyCache& cache, const btSoftBody& sof
   cache.faceReach = reach;
 }
 
+void SoftBodySolver::stopAtPinnedNodes(btRigidBody& tool, const ToolModel& piece, const Pose& pieceEnd,
+                                       Real inverseStep) {
+  for (Index v = 0; v < m_patch.vertexCount(); ++v) {
+    if (m_patch.inverseMasses[v] > 0) continue;
+    Index plane = 0;
+    const Real separation = outsideDistance(piece.planes, pieceEnd.applyInverse(m_patch.positions[v]), &plane);
+    // The node cannot give way, so the tool does. A speculative contact, as Box2D's: the tool's
+    // point there may close on the node by the gap along the nearest face's normal in the next
+    // step, and no more; inside, it leaves fast enough to be out at the end of the next step, as a
+    // position solve would move it. The face's plane bounds the node's side of the piece, so the
+    // limit is conservative past an edge.
+    const btVector3 outward = toBt(pieceEnd.applyToDirection(piece.planes[plane].normal));
+    const btVector3 closeAtMost = outward * btScalar(separation * inverseStep);
+    detail::applyNodeReaction(tool, toBt(m_patch.positions[v]), outward, 0, btScalar(inverseStep), closeAtMost);
+  }
+}
+
+void SoftBodySolver::findBackings(const btSoftBody& softBody) {
+  if (m_backingOfNode.size() < static_cast<std::size_t>(softBody.m_nodes.size())) {
+    m_backingOfNode.resize(static_cast<std::size_t>(softBody.m_nodes.size()), -1);
+  }
+  for (int c = 0; c < softBody.m_rcontacts.size(); ++c) {
+    const btSoftBody::RContact& contact = softBody.m_rcontacts[c];
+    const btCollisionObject* body = contact.m_cti.m_colObj;
+    // ThinTool's own holds aim at shapeless bodies of their own; only Bullet's contacts back a node.
+    if (body == nullptr || body->getCollisionShape() == nullptr || !body->isStaticOrKinematicObject()) continue;
+    m_backingOfNode[static_cast<Index>(contact.m_node - &softBody.m_nodes[0])] = c;
+  }
+}
+
 SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piece, const PieceMotion& motion,
                                                btSoftBody& softBody) {
   const Real clearance = tool.m_options.separation.clearance;
@@ -273,6 +304,7 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
   // (ForceSettings::applyToDynamicTool), as for the collision stage's own moves.
   const ForceSettings& force = tool.m_options.force;
   btRigidBody* dynamicTool = force.enabled && force.applyToDynamicTool ? nullptr : tool.dynamicBody();
+  if (dynamicTool != nullptr) findBackings(softBody);
   bool movedAny = false;
   for (Index v = 0; v < m_patch.vertexCount(); ++v) {
     const Index id = m_patch.nodeIds[v];
@@ -287,15 +319,34 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
     const Vec3& normal = m_patch.directions[v];
     const Vec3 toolPoint = m_patch.positions[v];
     const Vec3 toolVelocity = (toolPoint - motion.start().apply(motion.end().applyInverse(toolPoint))) * inverseStep;
+    const btVector3 solvedVelocity = node.m_v;
     const Vec3 velocity = toVec3(node.m_v);
     const Real along = dot(velocity, normal);
     const Vec3 separated = velocity + normal * (std::max(along, dot(toolVelocity, normal)) - along);
     if (isFinite(separated)) node.m_v = toBt(separated);
     movedAny = true;
     if (dynamicTool != nullptr && node.m_im > 0) {
-      // The node's change of momentum, taken from the tool.
-      dynamicTool->applyImpulse(displacement * (-softBody.m_sst.isdt / node.m_im),
-                                node.m_x - dynamicTool->getCenterOfMassPosition());
+      const int backingContact = m_backingOfNode[id];
+      const btSoftBody::RContact* backing = backingContact >= 0 ? &softBody.m_rcontacts[backingContact] : nullptr;
+      if (backing != nullptr && backing->m_cti.m_normal.dot(displacement) < 0) {
+        // Squeezed between the tool and a body that does not yield: the node stops the tool as
+        // that body would.
+        const btRigidBody* backingBody = btRigidBody::upcast(backing->m_cti.m_colObj);
+        const btVector3 backingVelocity =
+            backingBody != nullptr ? backingBody->getVelocityInLocalPoint(node.m_x - backingBody->getCenterOfMassPosition())
+                                   : btVector3(0, 0, 0);
+        detail::applyNodeReaction(*dynamicTool, node.m_x, displacement, 0, softBody.m_sst.isdt,
+                                  backingVelocity);
+      } else {
+        detail::applyNodeReaction(*dynamicTool, node.m_x, displacement, node.m_im, softBody.m_sst.isdt,
+                                  solvedVelocity);
+      }
+    }
+  }
+  if (dynamicTool != nullptr) {
+    stopAtPinnedNodes(*dynamicTool, piece, motion.end(), inverseStep);
+    for (int c = 0; c < softBody.m_rcontacts.size(); ++c) {
+      m_backingOfNode[static_cast<Index>(softBody.m_rcontacts[c].m_node - &softBody.m_nodes[0])] = -1;
     }
   }
   if (movedAny) {

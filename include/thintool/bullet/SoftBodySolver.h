@@ -28,6 +28,7 @@
 
 #include <vector>
 
+class btRigidBody;
 class btSoftBody;
 
 namespace thintool {
@@ -70,6 +71,10 @@ class SoftBodySolver : public btDefaultSoftBodySolver {
   };
   SoftBodyCache& cacheOf(const btSoftBody& softBody);
   void updateFaceReach(SoftBodyCache& cache, const btSoftBody& softBody);
+  // The pinned nodes of the patch stop the dynamic tool that carries the piece short of them.
+  void stopAtPinnedNodes(btRigidBody& tool, const ToolModel& piece, const Pose& pieceEnd, Real inverseStep);
+  // Fills m_backingOfNode from the soft body's contacts of this step.
+  void findBackings(const btSoftBody& softBody);
 
   static constexpr int kMostPasses = 4;
   // A guard only: the patch grows until no moved node has a face outside it. A cascade of faces
@@ -86,6 +91,9 @@ class SoftBodySolver : public btDefaultSoftBodySolver {
   std::vector<Index> m_patchFaces;           // the soft faces the patch has
   std::vector<SoftBodyCache> m_caches;
   std::vector<Index> m_nearNodes;  // soft nodes near the piece's reach grown by the face reach
+  // soft node -> its contact in the soft body's m_rcontacts with a static or kinematic body, -1 for
+  // none; filled only while a dynamic tool takes the reaction of moved nodes
+  std::vector<int> m_backingOfNode;
   int m_step = 0;
 };
 
