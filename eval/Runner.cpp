@@ -244,6 +244,7 @@ ToolOptions optionsFor(const SceneSpec& scene, const ToolSpec& tool) {
   options.response.friction.enabled = scene.friction;
   options.response.friction.fromBodies = false;  // a scene's friction is ThinTool's own coefficients
   options.separation.enabled = options.separation.enabled && scene.lastWord;
+  options.response.holdInSolver = options.response.holdInSolver && scene.holds;
   return options;
 }
 

@@ -348,10 +348,11 @@ SceneSpec parseScene(const std::string& text, const std::string& sourceName, con
     }
   }
   if (const std::optional<JsonField> options = scene.find("thintool")) {
-    options->allowOnly({"force", "friction", "last_word"});
+    options->allowOnly({"force", "friction", "last_word", "holds"});
     spec.force = options->boolean("force", spec.force);
     spec.friction = options->boolean("friction", spec.friction);
     spec.lastWord = options->boolean("last_word", spec.lastWord);
+    spec.holds = options->boolean("holds", spec.holds);
   }
   if (spec.duration == 0) {
     double end = 0;

@@ -139,6 +139,7 @@ struct SceneSpec {
   bool force = false;          ///< ThinTool: the Hunt–Crossley force (force error needs it)
   bool friction = false;       ///< ThinTool: Coulomb friction at the tool
   bool lastWord = true;        ///< ThinTool: the last word after the soft solver (ToolOptions::separation); "paper" and "ray-only" never have it
+  bool holds = true;           ///< ThinTool: the response's holds in the soft solver (ResponseSettings::holdInSolver)
 };
 
 /// An override applied to the file's JSON before it is read: path=value, the path in dots and

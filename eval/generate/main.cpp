@@ -33,6 +33,7 @@ inside the soft body, pierced faces, penetration deeper than 0.1 mm, non-finite 
   --seed-file F      seeds from a file, one a line; '#' starts a comment
   --algorithm X      swept (default), paper, ray-only, stock-A, stock-B or stock-E
   --no-last-word     ThinTool without its last word after Bullet's soft solve (ToolOptions::separation)
+  --no-holds         ThinTool without its holds in Bullet's soft solve (ResponseSettings::holdInSolver)
   --verbose          print each scene's description and every step's ground truth
   --scenes DIR       where vessel.obj is (default: the source tree's eval/scenes)
 )";
@@ -87,6 +88,7 @@ int main(int argc, char** argv) {
   AlgorithmKind algorithm = AlgorithmKind::Swept;
   bool verbose = false;
   bool lastWord = true;
+  bool holds = true;
   std::string sceneFolder = THINTOOL_EVAL_SCENES;
   try {
     for (int i = 1; i < argc; ++i) {
@@ -106,6 +108,8 @@ int main(int argc, char** argv) {
         algorithm = parseAlgorithm(value());
       } else if (arg == "--no-last-word") {
         lastWord = false;
+      } else if (arg == "--no-holds") {
+        holds = false;
       } else if (arg == "--verbose") {
         verbose = true;
       } else if (arg == "--scenes") {
@@ -136,6 +140,7 @@ int main(int argc, char** argv) {
       SceneSpec scene = generateScene(seed, sceneFolder);
       scene.algorithm = algorithm;
       scene.lastWord = lastWord;
+      scene.holds = holds;
       if (verbose) std::printf("%s\n", describeScene(scene).c_str());
       RunOptions options;
       if (verbose) {
@@ -159,9 +164,10 @@ int main(int argc, char** argv) {
     nonFinite += verdict.nonFinite;
     energy += verdict.energy;
     refused += verdict.refused;
-    std::printf("seed %llu failed: %s; reproduce: %s --seed %llu --algorithm %s%s --verbose\n",
+    std::printf("seed %llu failed: %s; reproduce: %s --seed %llu --algorithm %s%s%s --verbose\n",
                 static_cast<unsigned long long>(seed), joinReasons(verdict).c_str(), argv[0],
-                static_cast<unsigned long long>(seed), algorithmKey(algorithm), lastWord ? "" : " --no-last-word");
+                static_cast<unsigned long long>(seed), algorithmKey(algorithm), lastWord ? "" : " --no-last-word",
+                holds ? "" : " --no-holds");
     std::fflush(stdout);
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
