@@ -33,6 +33,8 @@ cmake -S . -B build-float64 -DCMAKE_BUILD_TYPE=Release -DTHINTOOL_WERROR=ON -DTH
   -DTHINTOOL_BUILD_BENCHMARKS=OFF
 cmake --build build-float64 --parallel 2
 ctest --test-dir build-float64 --parallel 2 --output-on-failure --exclude-regex 'Install|Docs' --label-exclude generated
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DTHINTOOL_WERROR=ON
+# The Falcon backend too, against the shared libnifalcon source when it is at hand.
+nifalcon=$(./scripts/build-nifalcon.sh build)
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DTHINTOOL_WERROR=ON ${nifalcon:+"-DCMAKE_PREFIX_PATH=$nifalcon"}
 cmake --build build --parallel 2
 ctest --test-dir build --parallel 2 --output-on-failure
