@@ -1,5 +1,6 @@
 # Installs ThinTool to a fresh prefix and builds examples/minimal against the installed package
-# with find_package(ThinTool), then runs it. Invoked by CTest:
+# with find_package(ThinTool), then runs it; where the package has the haptic layer, does the same
+# with tests/install/haptics (ThinTool::haptics). Invoked by CTest:
 #   cmake -DSOURCE_DIR=... -DWORK_DIR=... -DSHARED=ON|OFF [-DBUILD_DIR=<built tree to install>]
 #         [-DBULLET_DOUBLE=ON|OFF] -P CheckInstall.cmake
 # Without BUILD_DIR the library is configured and built here first (the shared case).
@@ -38,3 +39,14 @@ run(${CMAKE_COMMAND} -S ${SOURCE_DIR}/examples/minimal -B ${consumer} -DCMAKE_PR
 run(${CMAKE_COMMAND} --build ${consumer})
 run(${consumer}/thintool_minimal)
 message(STATUS "examples/minimal built against ${prefix} and ran")
+
+# The haptic layer, where the package has it: a loop against a device, from the installed package.
+file(GLOB hapticsLibraries ${prefix}/lib*/libthintool_haptics.*)
+if(hapticsLibraries)
+  set(hapticsConsumer ${WORK_DIR}/haptics)
+  run(${CMAKE_COMMAND} -S ${SOURCE_DIR}/tests/install/haptics -B ${hapticsConsumer} -DCMAKE_PREFIX_PATH=${prefix}
+      -DCMAKE_BUILD_TYPE=Release)
+  run(${CMAKE_COMMAND} --build ${hapticsConsumer})
+  run(${hapticsConsumer}/thintool_haptics_consumer)
+  message(STATUS "a haptic loop built against ${prefix} and ran")
+endif()
