@@ -313,18 +313,12 @@ void computeHolds(const ToolModel& model, const Pose& toolPose, const Pose& prev
                   Real skin, const std::vector<NodeCorrection>& corrections, bool holdAtToolFaces,
                   ResponseWorkspace& work, std::vector<NodeHold>& outHolds) {
   outHolds.clear();
-  if (work.m_moved.size() < patch.vertexCount()) {
-    work.m_moved.resize(patch.vertexCount(), 0);
-  }
   for (const NodeCorrection& correction : corrections) {
     const Vec3 at = patch.positions[correction.vertex] + correction.displacement;
     outHolds.push_back({correction.vertex, correction.normal, -dot(correction.normal, at), correction.sticks});
   }
   if (!holdAtToolFaces) {
     return;
-  }
-  for (const NodeCorrection& correction : corrections) {
-    work.m_moved[correction.vertex] = 1;
   }
   // A moved node keeps its correction's plane, and the tool face's too: a correction along a soft
   // face's normal gives a plane across the tool's face, which would leave the node free to go
@@ -367,9 +361,6 @@ void computeHolds(const ToolModel& model, const Pose& toolPose, const Pose& prev
     const Plane& face = model.planes[front];
     const Vec3 normal = toolPose.applyToDirection(face.normal);
     outHolds.push_back({vertex, normal, -dot(normal, toolPose.apply(face.normal * (face.offset + skin))), false});
-  }
-  for (const NodeCorrection& correction : corrections) {
-    work.m_moved[correction.vertex] = 0;
   }
 }
 

@@ -120,7 +120,6 @@ class ResponseWorkspace {
   std::vector<Index> m_slot;          ///< per patch vertex: its entry in the output, or kInvalidIndex
   std::vector<Real> m_largestShare;   ///< per output entry: the largest single move, whose normal it keeps
   std::vector<Real> m_entryDepth;     ///< per output entry: how far inside the tool the node was
-  std::vector<std::uint8_t> m_moved;  ///< per patch vertex, within computeHolds: it has a correction
 };
 
 /// Turns contacts into node corrections and the wrench on the tool, for a step of dt seconds with
