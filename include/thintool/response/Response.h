@@ -40,7 +40,6 @@
 
 #include <thintool/detection/Detection.h>
 
-#include <cstdint>
 #include <vector>
 
 namespace thintool {
