@@ -12,19 +12,8 @@
 
 namespace thintool::examples {
 
-class FalconDevice final : public haptics::Device {
- public:
-  /// Opens Falcon number index, loads the firmware and homes it; throws thintool::Error on failure.
-  FalconDevice(int index, const std::string& firmwareFile);
-  ~FalconDevice() override;
-  std::string name() const override { return "Novint Falcon"; }
-  haptics::DeviceLimits limits() const override { return haptics::DeviceLimits{8, 0}; }
-  bool read(double now, haptics::DeviceState& out) override;
-  void write(const Vec3& force) override;
-
- private:
-  struct Impl;
-  std::unique_ptr<Impl> m_impl;
-};
+/// Opens Falcon number index, loads the firmware if it has none and homes it (FalconSession);
+/// throws thintool::Error on failure.
+std::unique_ptr<haptics::Device> openFalcon(int index, const std::string& firmwareFile);
 
 }  // namespace thintool::examples

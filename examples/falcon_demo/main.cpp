@@ -90,7 +90,7 @@ int main(int argc, char** argv) {
   try {
     if (!firmware.empty()) {
 #ifdef THINTOOL_HAVE_NIFALCON
-      device = std::make_unique<examples::FalconDevice>(0, firmware);
+      device = examples::openFalcon(0, firmware);
       settings.realTime = true;
 #else
       std::cerr << "falcon_demo: built without libnifalcon; install it and reconfigure to use a Falcon\n";
