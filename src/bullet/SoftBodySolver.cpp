@@ -20,6 +20,22 @@ namespace thintool {
 
 namespace {
 
+// A moved node's reaction on the dynamic tool that moved it by displacement, the node having moved
+// at solvedVelocity before. Squeezed between the tool and a body that does not yield (backing, a
+// contact of Bullet's own), the node stops the tool as that body would.
+void reactOnTool(btRigidBody& tool, const btSoftBody& softBody, const btSoftBody::Node& node,
+                 const btSoftBody::RContact* backing, const btVector3& displacement, const btVector3& solvedVelocity) {
+  if (backing == nullptr || backing->m_cti.m_normal.dot(displacement) >= 0) {
+    detail::applyNodeReaction(tool, node.m_x, displacement, node.m_im, softBody.m_sst.isdt, solvedVelocity);
+    return;
+  }
+  const btRigidBody* backingBody = btRigidBody::upcast(backing->m_cti.m_colObj);
+  const btVector3 backingVelocity =
+      backingBody != nullptr ? backingBody->getVelocityInLocalPoint(node.m_x - backingBody->getCenterOfMassPosition())
+                             : btVector3(0, 0, 0);
+  detail::applyNodeReaction(tool, node.m_x, displacement, 0, softBody.m_sst.isdt, backingVelocity);
+}
+
 // Everything the piece can reach during the step: its boxes at the arc's samples, grown by how far
 // a point of the piece strays from the straight line between two samples, r·(1 − cos(θ/2)) for a
 // point r from the body's origin and a turn θ between samples.
@@ -326,21 +342,9 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
     if (isFinite(separated)) node.m_v = toBt(separated);
     movedAny = true;
     if (dynamicTool != nullptr && node.m_im > 0) {
-      const int backingContact = m_backingOfNode[id];
-      const btSoftBody::RContact* backing = backingContact >= 0 ? &softBody.m_rcontacts[backingContact] : nullptr;
-      if (backing != nullptr && backing->m_cti.m_normal.dot(displacement) < 0) {
-        // Squeezed between the tool and a body that does not yield: the node stops the tool as
-        // that body would.
-        const btRigidBody* backingBody = btRigidBody::upcast(backing->m_cti.m_colObj);
-        const btVector3 backingVelocity =
-            backingBody != nullptr ? backingBody->getVelocityInLocalPoint(node.m_x - backingBody->getCenterOfMassPosition())
-                                   : btVector3(0, 0, 0);
-        detail::applyNodeReaction(*dynamicTool, node.m_x, displacement, 0, softBody.m_sst.isdt,
-                                  backingVelocity);
-      } else {
-        detail::applyNodeReaction(*dynamicTool, node.m_x, displacement, node.m_im, softBody.m_sst.isdt,
-                                  solvedVelocity);
-      }
+      const int backing = m_backingOfNode[id];
+      reactOnTool(*dynamicTool, softBody, node, backing >= 0 ? &softBody.m_rcontacts[backing] : nullptr,
+                  displacement, solvedVelocity);
     }
   }
   if (dynamicTool != nullptr) {

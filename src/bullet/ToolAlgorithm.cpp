@@ -113,6 +113,7 @@ Real justifiedMove(const SoftPatch& patch, Index vertex, Real pieceReach) {
 Real applyResponse(PairState& state, btSoftBody& softBody, btRigidBody* dynamicBody, btScalar timeStep,
                    Real pieceReach) {
   Real longestSquared = 0;
+  const btScalar inverseStep = 1 / timeStep;
   for (const NodeCorrection& correction : state.corrections) {
     const Real justified = justifiedMove(state.patch, correction.vertex, pieceReach);
     if (!isFinite(correction.displacement) || !isFinite(correction.normal) ||
@@ -127,7 +128,6 @@ Real applyResponse(PairState& state, btSoftBody& softBody, btRigidBody* dynamicB
     state.patch.positions[correction.vertex] += correction.displacement;
     if (dynamicBody != nullptr && node.m_im > 0) {
       // The velocity Bullet's solve would have given the node where it was predicted to be.
-      const btScalar inverseStep = 1 / timeStep;
       applyNodeReaction(*dynamicBody, node.m_x, displacement, node.m_im, inverseStep,
                         (node.m_x - displacement - node.m_q) * inverseStep);
     }

@@ -22,6 +22,7 @@ struct DriverLog {
   int closes = 0;
   int loadAttempts = 0;
   std::vector<std::array<double, 3>> forcesSent;  // the force at each completed exchange
+  std::array<double, 3> lastForceSet{0, 0, 0};     // the force the session last asked for
   bool homingOn = false;
   bool forceWhileHoming = false;  // a non-zero force went out before the device was homed
 };
@@ -53,7 +54,10 @@ class FakeDriver final : public FalconDriver {
   }
   void setHoming(bool homing) override { m_log.homingOn = homing; }
   bool homed() override { return loopsUntilHomed >= 0 && m_exchanges >= loopsUntilHomed; }
-  void setForce(const std::array<double, 3>& force) override { m_force = force; }
+  void setForce(const std::array<double, 3>& force) override {
+    m_force = force;
+    m_log.lastForceSet = force;
+  }
   bool runIOLoop() override {
     if (repliesBeforeUnplug >= 0 && m_exchanges >= repliesBeforeUnplug) return false;
     if (pendingEveryOther != 0 && (m_calls++ % 2) == 0) return false;
@@ -166,8 +170,10 @@ TEST(FalconSession, AnUnpluggedDeviceEndsTheSessionWithNoForce) {
   while (session.read(0.001 * reads, state) && reads < 1000) ++reads;
   EXPECT_LT(reads, 1000) << "never noticed";
   EXPECT_GE(reads, quickSettings().lostAfterFailedLoops - 1) << "a few missed replies are not an unplug";
+  EXPECT_EQ(log.lastForceSet, (std::array<double, 3>{0, 0, 0})) << "the force stayed on";
   session.write({0, 5, 0});
   EXPECT_FALSE(session.read(1, state));
+  EXPECT_EQ(log.lastForceSet, (std::array<double, 3>{0, 0, 0}));
 }
 
 }  // namespace
