@@ -138,15 +138,24 @@ Real applyResponse(PairState& state, btSoftBody& softBody, btRigidBody* dynamicB
   const auto usable = [](const NodeHold& hold) { return isFinite(hold.normal) && std::isfinite(hold.offset); };
   const auto usableCount = std::count_if(state.holds.begin(), state.holds.end(), usable);
   int slot = softBody.m_rcontacts.size();
-  softBody.m_rcontacts.resize(slot + static_cast<int>(usableCount), blankContact());
+  // Both grow by doubling, as a std::vector does, so that a scene which holds a few more nodes than
+  // ever before does not allocate again each step on its way there.
+  const int needed = slot + static_cast<int>(usableCount);
+  if (softBody.m_rcontacts.capacity() < needed) {
+    softBody.m_rcontacts.reserve(std::max(needed, 2 * softBody.m_rcontacts.capacity()));
+  }
+  softBody.m_rcontacts.resize(needed, blankContact());
+  if (state.holdBodies.size() < static_cast<std::size_t>(usableCount)) {
+    const std::size_t grown = std::max(static_cast<std::size_t>(usableCount), 2 * state.holdBodies.size());
+    while (state.holdBodies.size() < grown) {
+      state.holdBodies.push_back(
+          std::make_unique<btRigidBody>(btRigidBody::btRigidBodyConstructionInfo(0, nullptr, nullptr)));
+    }
+  }
   Index holdsUsed = 0;
   for (const NodeHold& hold : state.holds) {
     if (!usable(hold)) {
       continue;
-    }
-    if (holdsUsed == state.holdBodies.size()) {
-      state.holdBodies.push_back(
-          std::make_unique<btRigidBody>(btRigidBody::btRigidBodyConstructionInfo(0, nullptr, nullptr)));
     }
     btSoftBody::Node& node = softBody.m_nodes[static_cast<int>(state.patch.nodeIds[hold.vertex])];
     fillHoldContact(softBody.m_rcontacts[slot++], node, hold, *state.holdBodies[holdsUsed++], timeStep);
