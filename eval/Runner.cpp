@@ -241,8 +241,10 @@ ToolOptions optionsFor(const SceneSpec& scene, const ToolSpec& tool) {
   if (scene.algorithm == AlgorithmKind::RayOnly) options = ToolOptions::rayOnly();
   options.name = tool.name;
   options.force.enabled = scene.force;
-  options.response.friction.enabled = scene.friction;
-  options.response.friction.fromBodies = false;  // a scene's friction is ThinTool's own coefficients
+  if (scene.friction.has_value()) {
+    options.response.friction.enabled = *scene.friction;
+    options.response.friction.fromBodies = false;  // a scene's own friction is ThinTool's coefficients
+  }
   options.separation.enabled = options.separation.enabled && scene.lastWord;
   options.response.holdInSolver = options.response.holdInSolver && scene.holds;
   return options;

@@ -350,7 +350,7 @@ SceneSpec parseScene(const std::string& text, const std::string& sourceName, con
   if (const std::optional<JsonField> options = scene.find("thintool")) {
     options->allowOnly({"force", "friction", "last_word", "holds"});
     spec.force = options->boolean("force", spec.force);
-    spec.friction = options->boolean("friction", spec.friction);
+    if (options->has("friction")) spec.friction = options->boolean("friction", false);
     spec.lastWord = options->boolean("last_word", spec.lastWord);
     spec.holds = options->boolean("holds", spec.holds);
   }

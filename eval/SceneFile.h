@@ -137,7 +137,9 @@ struct SceneSpec {
   std::vector<ToolSpec> tools;
   AlgorithmKind algorithm = AlgorithmKind::Swept;
   bool force = false;          ///< ThinTool: the Hunt–Crossley force (force error needs it)
-  bool friction = false;       ///< ThinTool: Coulomb friction at the tool
+  /// ThinTool's Coulomb friction at the tool. Unset, the library's default: each pair's coefficient
+  /// from the bodies (FrictionSettings::fromBodies); true, ThinTool's own coefficients; false, none.
+  std::optional<bool> friction;
   bool lastWord = true;        ///< ThinTool: the last word after the soft solver (ToolOptions::separation); "paper" and "ray-only" never have it
   bool holds = true;           ///< ThinTool: the response's holds in the soft solver (ResponseSettings::holdInSolver)
 };
