@@ -6,10 +6,10 @@
 // the counts are taken around what Bullet's dispatcher runs for the tool's pairs with the ball (its
 // near callback), which for ThinTool is the whole per-step path (gather, detection, response,
 // holds). The scene is the paper's with ThinTool's defaults, pressed a quarter of the ball's height
-// deep, held, lifted and pressed again: only the first press and hold may grow the buffers (to the
-// most contacts, nodes and holds the scene ever has; Bullet's float64 build reaches that in the
-// hold), and repeating them must allocate nothing. Its own
-// executable, because replacing operator new replaces it for the whole program.
+// deep, held, lifted and pressed again: only the first press may grow the buffers (to the most
+// contacts, nodes and holds the scene ever has, or, growing by doubling, past it), and the hold, the
+// lift and the repeated press and hold must allocate nothing. Its own executable, because
+// replacing operator new replaces it for the whole program.
 
 #include <CountingAllocator.h>
 #include <SoftBallScene.h>
@@ -113,12 +113,11 @@ std::vector<Phase> pressHoldLiftPress(const SceneSettings& settings) {
 }
 
 TEST(Allocation, ThinToolStepsAllocateNothingOnceTheBuffersHaveGrown) {
-  // ThinTool's default, swept detection; the first press and hold grow the buffers to their
-  // high-water marks, the lift and the second press and hold must find them grown.
+  // ThinTool's default, swept detection; the first press grows the buffers, everything after it
+  // must find them grown.
   const std::vector<Phase> phases = pressHoldLiftPress(SceneSettings{});
   EXPECT_GT(phases[0].allocations, 0);  // the count sees the growth
-  EXPECT_GT(phases[1].contactSteps, 0);
-  for (std::size_t k = 2; k < phases.size(); ++k) {
+  for (std::size_t k = 1; k < phases.size(); ++k) {
     EXPECT_GT(phases[k].contactSteps, 0) << phases[k].name;
     EXPECT_EQ(phases[k].allocations, 0) << phases[k].name;
   }
