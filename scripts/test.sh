@@ -1,11 +1,12 @@
 #!/bin/sh
-# Runs each libFuzzer target for a short, fixed run (clang) and the tests under AddressSanitizer
-# and UndefinedBehaviorSanitizer; then builds ThinTool with warnings as errors against Bullet's
-# float64 build and its float build and runs the whole test suite on each (unit, integration,
-# install and a brief benchmark run): the core computes in double either way, the glue converts.
-# The generated scenes' verdicts (label "generated") are asserted in the float build only: which of
-# those chaotic scenes fail depends on Bullet's precision (tests/eval/GeneratedScenesTest.cpp).
-# The float build's ctest summary is the last thing printed.
+# Runs the tests under AddressSanitizer and UndefinedBehaviorSanitizer against Bullet's float64
+# build, and each libFuzzer target for a short, fixed run (clang); then builds ThinTool against
+# Bullet's float build and runs the whole test suite (unit, integration, install and a brief
+# benchmark run). Both Bullet builds are covered, with warnings as errors: the core computes in
+# double either way, the glue converts. The generated scenes' verdicts (label "generated") are
+# asserted in the float build only: which of those chaotic scenes fail depends on Bullet's
+# precision (tests/eval/GeneratedScenesTest.cpp). The float build's ctest summary is the last
+# thing printed.
 # Needs the packages of scripts/install-deps.sh.
 set -eu
 cd "$(dirname "$0")/.."
@@ -13,7 +14,8 @@ cd "$(dirname "$0")/.."
 # -O1 and line tables only: the sanitizers' usual setting, which compiles this stage in about
 # 2 min 45 s on 2 cores instead of 4 min 20 s at -O2 -g, and runs its tests no slower.
 cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" \
-  -DTHINTOOL_WERROR=ON -DTHINTOOL_SANITIZE=address,undefined,float-cast-overflow -DTHINTOOL_BUILD_BENCHMARKS=OFF
+  -DTHINTOOL_WERROR=ON -DTHINTOOL_BULLET_DOUBLE=ON -DTHINTOOL_SANITIZE=address,undefined,float-cast-overflow \
+  -DTHINTOOL_BUILD_BENCHMARKS=OFF
 cmake --build build-sanitize --parallel 2
 ctest --test-dir build-sanitize --parallel 2 --output-on-failure --exclude-regex 'Install|Docs' --label-exclude generated
 
@@ -29,10 +31,6 @@ for run in tool_model:40000 replay:400000 json:150000; do
     "build-fuzz/corpus-$target"
 done
 
-cmake -S . -B build-float64 -DCMAKE_BUILD_TYPE=Release -DTHINTOOL_WERROR=ON -DTHINTOOL_BULLET_DOUBLE=ON \
-  -DTHINTOOL_BUILD_BENCHMARKS=OFF
-cmake --build build-float64 --parallel 2
-ctest --test-dir build-float64 --parallel 2 --output-on-failure --exclude-regex 'Install|Docs' --label-exclude generated
 # The Falcon backend too, against the shared libnifalcon source when it is at hand.
 nifalcon=$(./scripts/build-nifalcon.sh build)
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DTHINTOOL_WERROR=ON ${nifalcon:+"-DCMAKE_PREFIX_PATH=$nifalcon"}
