@@ -44,6 +44,13 @@ void Tool::trackMotion() {
   m_poseNow = now;
   m_motionTracked = true;
   m_jumpNext = false;
+  // A dynamic tool set down by hand moves on from there in the same step: Bullet integrates it
+  // after the collision pass, and the last word sweeps that motion from the pose set down.
+  if (m_separationJump && dynamicBody() != nullptr && isFinite(now)) {
+    m_separatedPose = now;
+    m_hasSeparatedPose = true;
+    m_separationJump = false;
+  }
 }
 
 btRigidBody* Tool::rigidBody() const { return btRigidBody::upcast(&m_body); }

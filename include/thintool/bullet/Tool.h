@@ -166,7 +166,9 @@ class Tool {
 
   /// Declares that the tool's next move is a jump (re-homing a device, a pose set by hand), not
   /// a motion: swept detection and the last word then do not sweep the space in between for one
-  /// step. Nothing else is taken for a jump, however far the tool moves or turns in a step.
+  /// step. Nothing else is taken for a jump, however far the tool moves or turns in a step. A
+  /// dynamic tool's jump ends where it is at the next step's collision pass: the motion Bullet
+  /// integrates from there in that step is swept.
   void resetMotion();
 
  private:
