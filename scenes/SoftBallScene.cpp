@@ -22,8 +22,7 @@ namespace thintool::scenes {
 
 namespace {
 
-constexpr double kParkedHeight = 50;   // m: where the tool waits while the ball settles
-constexpr double kStartClearance = 0.1;  // m above the soft margin over the ball's top
+constexpr double kParkedHeight = 50;  // m: where the tool waits while the ball settles
 
 }  // namespace
 
@@ -345,6 +344,11 @@ double SoftBallScene::ballMeanHeight() const {
   return sum / m_ball->m_nodes.size();
 }
 
+double SoftBallScene::pressStartHeight() const {
+  constexpr double kStartClearance = 0.1;  // m between the tool's underside and the soft margin
+  return ballTop() + softMargin() + kStartClearance + toolBox().halfExtents.y;
+}
+
 
 std::vector<Point> nodePositions(const btSoftBody& ball) {
   std::vector<Point> points(ball.m_nodes.size());
@@ -370,8 +374,7 @@ PressResult runPress(const PressSettings& settings) {
   SoftBallScene scene(settings.scene);
   scene.settle();
   const double dt = settings.scene.timeStep;
-  const double halfThickness = scene.toolBox().halfExtents.y;
-  const double startHeight = scene.ballTop() + scene.softMargin() + kStartClearance + halfThickness;
+  const double startHeight = scene.pressStartHeight();
   const double targetHeight = scene.ballMeanHeight();
   const int moveSteps = static_cast<int>(std::ceil((startHeight - targetHeight) / (settings.speed * dt)));
   const int holdSteps = static_cast<int>(std::lround(settings.holdSeconds / dt));

@@ -100,6 +100,9 @@ class SoftBallScene {
   /// Highest and mean node height of the ball (m, world).
   double ballTop() const;
   double ballMeanHeight() const;
+  /// Where a press starts (m, world height of the tool's origin): its underside 0.1 m above the
+  /// soft margin over the ball's top, as in the team's baseline.
+  double pressStartHeight() const;
   /// The world position of a point given relative to settings().origin.
   btVector3 atOrigin(double x, double y, double z) const;
   /// The point at world height y on the vertical line through the ball's centre.

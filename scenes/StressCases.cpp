@@ -16,8 +16,6 @@ namespace thintool::scenes {
 
 namespace {
 
-constexpr double kStartClearance = 0.1;  // m between the tool's underside and the soft margin at the start
-
 std::string format(const char* pattern, double value) {
   char text[64];
   std::snprintf(text, sizeof text, pattern, value);
@@ -369,9 +367,7 @@ StressOutcome runStressCase(const StressCase& stressCase) {
   scene.settle();
   if (stressCase.prepare) stressCase.prepare(scene);
   const double dt = stressCase.scene.timeStep;
-  const double halfThickness = scene.toolBox().halfExtents.y;
-  btTransform start(btQuaternion::getIdentity(),
-                    scene.aboveBall(scene.ballTop() + scene.softMargin() + kStartClearance + halfThickness));
+  btTransform start(btQuaternion::getIdentity(), scene.aboveBall(scene.pressStartHeight()));
   if (stressCase.startPose) start = stressCase.startPose(scene);
   // Down to the ball's mean height, in a straight line.
   const double depth = start.getOrigin().y() - scene.ballMeanHeight();

@@ -64,7 +64,7 @@ std::vector<Phase> pressHoldLiftPress(const SceneSettings& settings) {
   dispatcher.setNearCallback(&countingNearCallback);
 
   const double dt = settings.timeStep;
-  const double start = scene.ballTop() + scene.softMargin() + 0.1 + scene.toolBox().halfExtents.y;
+  const double start = scene.pressStartHeight();
   // Three tenths of the way to the ball's mean height: pressed deeper, the ball squirts out from
   // under the frictionless plate (halfway, it did so in the sanitizer build and not in the others).
   const double bottom = scene.ballTop() - 0.3 * (scene.ballTop() - scene.ballMeanHeight());
