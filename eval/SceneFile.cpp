@@ -33,7 +33,7 @@ std::string resolve(const std::string& baseFolder, const std::string& file) {
   return !file.empty() && file[0] == '/' ? file : baseFolder + "/" + file;
 }
 
-// A step may be written as a fraction, "1/240", as the README's tables write it.
+// A step may be written as a fraction, "1/240", as the results' tables write it.
 double timeStepOf(const JsonField& field) {
   if (field.value().kind == JsonValue::Kind::String) {
     const std::string text = field.string();

@@ -20,7 +20,7 @@
 namespace thintool::eval {
 
 /// Who handles the tool–tissue contact. The stock variants are baseline.md's; ThinTool's run on
-/// variant E's soft settings (realistic skin), as in the README's tables.
+/// variant E's soft settings (realistic skin), as in the main job's tables (docs/results/main-job.md).
 enum class AlgorithmKind {
   StockA,    ///< Bullet's defaults: margin 0.25, kKHR 0.1, 1 position iteration, SDF voxel 0.25
   StockB,    ///< A with kKHR 1 and 10 iterations

@@ -6,7 +6,8 @@
 /// The stiff and extreme cases of the stability suite, as data: stiffness against time step for
 /// the default response and for the paper's force response, extreme geometry, extreme motion and
 /// broken soft meshes, each run in the paper's scene (SoftBallScene) and judged by the same
-/// measures. Shared by tests/stability and examples/stability, which prints the README's table.
+/// measures. Shared by tests/stability and examples/stability, which prints the table of
+/// docs/results/stability.md.
 ///
 /// A case is "stable" when no coordinate of the ball, of a dynamic tool or of ThinTool's report is
 /// ever NaN or infinite, and the ball's kinetic energy does not grow while the tool holds still:
@@ -79,7 +80,7 @@ struct StressOutcome {
   std::string error;          ///< registration's error message, when it failed
 };
 
-/// Every case of the suite, in the order of the README's table.
+/// Every case of the suite, in the order of the stability table (docs/results/stability.md).
 std::vector<StressCase> stressCases();
 
 StressOutcome runStressCase(const StressCase& stressCase);

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Prints README's table of stock Bullet's soft-rigid handler against ThinTool's collision stage.
+"""Prints the table (docs/results/evaluation.md) of stock Bullet's soft-rigid handler against ThinTool's collision stage.
 
 Runs benchmarks/bullet/HandlerBench.cpp's rows (StockHandler, ThinToolHandler,
 ThinToolPaperHandler at each <faces>/<margin mm>) with repetitions in random order and keeps each

@@ -2,8 +2,8 @@
 // Copyright (c) 2026 The ThinTool developers
 //
 // This example runs the stability suite's stiff and extreme cases (scenes/StressCases.h) in the
-// paper's scene and prints the README's table: each case's outcome, its largest penetration and
-// kinetic energy, and its cost per step, from the same run. tests/stability holds every case to
+// paper's scene and prints the table of docs/results/stability.md: each case's outcome, its
+// largest penetration and kinetic energy, and its cost per step, from the same run. tests/stability holds every case to
 // its expectation; this program only reports.
 //
 //   stability [--filter TEXT]   runs the cases whose group or name contains TEXT

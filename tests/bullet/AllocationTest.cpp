@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Zlib
 // Copyright (c) 2026 The ThinTool developers
 //
-// "Nothing is allocated once the buffers have grown" (README, How it works), checked: every
+// "Nothing is allocated once the buffers have grown" (docs/design.md), checked: every
 // operator new of the program and every allocation through Bullet's btAlignedAlloc is counted, and
 // the counts are taken around what Bullet's dispatcher runs for the tool's pairs with the ball (its
 // near callback), which for ThinTool is the whole per-step path (gather, detection, response,
