@@ -1,6 +1,7 @@
 # Installs ThinTool to a fresh prefix and builds examples/minimal against the installed package
-# with find_package(ThinTool), then runs it; where the package has the haptic layer, does the same
-# with tests/install/haptics (ThinTool::haptics). Invoked by CTest:
+# with find_package(ThinTool), and again with the compiler and pkg-config's thintool module alone,
+# and runs both; where the package has the haptic layer, does the same with tests/install/haptics
+# (ThinTool::haptics, pkg-config's thintool-haptics). Invoked by CTest:
 #   cmake -DSOURCE_DIR=... -DWORK_DIR=... -DSHARED=ON|OFF [-DBUILD_DIR=<built tree to install>]
 #         [-DBULLET_DOUBLE=ON|OFF] -P CheckInstall.cmake
 # Without BUILD_DIR the library is configured and built here first (the shared case).
@@ -40,6 +41,35 @@ run(${CMAKE_COMMAND} --build ${consumer})
 run(${consumer}/thintool_minimal)
 message(STATUS "examples/minimal built against ${prefix} and ran")
 
+# The same programs without CMake: the compiler and pkg-config's flags for the installed modules.
+find_program(PKG_CONFIG NAMES pkg-config REQUIRED)
+find_program(CXX NAMES c++ g++ REQUIRED)
+file(GLOB pcDirs ${prefix}/lib*/pkgconfig ${prefix}/lib/*/pkgconfig)
+list(JOIN pcDirs ":" pcPath)
+if(DEFINED ENV{PKG_CONFIG_PATH} AND NOT "$ENV{PKG_CONFIG_PATH}" STREQUAL "")
+  set(pcPath "${pcPath}:$ENV{PKG_CONFIG_PATH}")
+endif()
+set(ENV{PKG_CONFIG_PATH} "${pcPath}")
+function(build_with_pkg_config module source output)
+  execute_process(COMMAND ${PKG_CONFIG} --cflags --libs ${module} RESULT_VARIABLE result
+                  OUTPUT_VARIABLE flags ERROR_VARIABLE flags OUTPUT_STRIP_TRAILING_WHITESPACE)
+  if(NOT result EQUAL 0)
+    message(FATAL_ERROR "pkg-config does not find ${module} under ${prefix}: ${flags}")
+  endif()
+  separate_arguments(flags UNIX_COMMAND "${flags}")
+  set(rpath)
+  if(SHARED)
+    foreach(dir IN LISTS pcDirs)
+      get_filename_component(libDir ${dir} DIRECTORY)
+      list(APPEND rpath -Wl,-rpath,${libDir})
+    endforeach()
+  endif()
+  run(${CXX} -std=c++17 -O1 ${source} -o ${output} ${flags} ${rpath})
+  run(${output})
+  message(STATUS "${source} built with pkg-config's ${module} and ran")
+endfunction()
+build_with_pkg_config(thintool ${SOURCE_DIR}/examples/minimal/main.cpp ${WORK_DIR}/minimal-pkg-config)
+
 # The haptic layer, where the package has it: a loop against a device, from the installed package.
 file(GLOB hapticsLibraries ${prefix}/lib*/libthintool_haptics.*)
 if(hapticsLibraries)
@@ -49,4 +79,5 @@ if(hapticsLibraries)
   run(${CMAKE_COMMAND} --build ${hapticsConsumer})
   run(${hapticsConsumer}/thintool_haptics_consumer)
   message(STATUS "a haptic loop built against ${prefix} and ran")
+  build_with_pkg_config(thintool-haptics ${SOURCE_DIR}/tests/install/haptics/main.cpp ${WORK_DIR}/haptics-pkg-config)
 endif()
