@@ -11,4 +11,5 @@
 #include <thintool/bullet/SoftBodySolver.h>
 #include <thintool/bullet/Tool.h>
 #include <thintool/bullet/ToolOptions.h>
+#include <thintool/core/Assert.h>
 #include <thintool/core/Error.h>

@@ -8,6 +8,7 @@
 #include <thintool/bullet/CollisionConfiguration.h>
 #include <thintool/bullet/Convert.h>
 #include <thintool/bullet/Tool.h>
+#include <thintool/core/Assert.h>
 
 #include <BulletDynamics/Dynamics/btRigidBody.h>
 #include <BulletSoftBody/btSoftBody.h>
@@ -310,6 +311,7 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
     if (m_patchFaces.size() == facesBefore) break;
   }
   for (Index f : m_patchFaces) m_faceInPatch[f] = 0;
+  THINTOOL_ASSERT(m_patch.faces.size() <= m_patchFaces.size());
 
   // Scatter the moves. A moved node's velocity along its move is what the solve gave it, or the
   // tool's own there, whichever separates faster: a contact without bounce. Taking the move itself
@@ -324,6 +326,7 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
   bool movedAny = false;
   for (Index v = 0; v < m_patch.vertexCount(); ++v) {
     const Index id = m_patch.nodeIds[v];
+    THINTOOL_ASSERT(id < static_cast<Index>(nodeCount) && m_vertexOfNode[id] == v);
     m_vertexOfNode[id] = kInvalidIndex;
     if (m_patch.moved[v] == 0 || !isFinite(m_patch.positions[v])) {
       continue;

@@ -9,6 +9,7 @@
 
 #include <thintool/bullet/Convert.h>
 #include <thintool/bullet/Tool.h>
+#include <thintool/core/Assert.h>
 
 #include <BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h>
 #include <BulletDynamics/Dynamics/btRigidBody.h>
@@ -122,6 +123,7 @@ Real applyResponse(PairState& state, btSoftBody& softBody, btRigidBody* dynamicB
       continue;
     }
     longestSquared = std::max(longestSquared, lengthSquared(correction.displacement));
+    THINTOOL_ASSERT(state.patch.nodeIds[correction.vertex] < static_cast<Index>(softBody.m_nodes.size()));
     btSoftBody::Node& node = softBody.m_nodes[static_cast<int>(state.patch.nodeIds[correction.vertex])];
     const btVector3 displacement = toBt(correction.displacement);
     node.m_x += displacement;
@@ -157,6 +159,7 @@ Real applyResponse(PairState& state, btSoftBody& softBody, btRigidBody* dynamicB
     if (!usable(hold)) {
       continue;
     }
+    THINTOOL_ASSERT(state.patch.nodeIds[hold.vertex] < static_cast<Index>(softBody.m_nodes.size()));
     btSoftBody::Node& node = softBody.m_nodes[static_cast<int>(state.patch.nodeIds[hold.vertex])];
     fillHoldContact(softBody.m_rcontacts[slot++], node, hold, *state.holdBodies[holdsUsed++], timeStep);
   }

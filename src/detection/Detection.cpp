@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Zlib
 // Copyright (c) 2026 The ThinTool developers
 #include <thintool/detection/Detection.h>
+
+#include <thintool/core/Assert.h>
 #include <thintool/geometry/RayTriangle.h>
 
 #include <algorithm>
@@ -69,6 +71,7 @@ void detectContacts(const ToolModel& model, const Pose& toolPose, const SoftPatc
                     const SoftSurfaceRayQuery* reverseQuery, const DetectionParameters& parameters,
                     PairHistory& history, DetectionWorkspace& work, std::vector<Contact>& outContacts,
                     DetectionCounters& outCounters) {
+  THINTOOL_ASSERT(patch.consistent());
   outContacts.clear();
   outCounters = DetectionCounters{};
   outCounters.facesGathered = patch.faceCount();

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Zlib
 // Copyright (c) 2026 The ThinTool developers
 #include <thintool/detection/SweptDetection.h>
+
+#include <thintool/core/Assert.h>
 #include <thintool/geometry/Ccd.h>
 #include <thintool/geometry/RayTriangle.h>
 
@@ -265,6 +267,7 @@ void SideMemory::resize(Index softNodes, Index softFaces) {
 void detectSwept(const ToolModel& model, const Pose& previousPose, const Pose& pose, const SoftPatch& patch, Real skin,
                  SideMemory& memory, SweptWorkspace& work, std::vector<Contact>& outContacts,
                  DetectionCounters& outCounters) {
+  THINTOOL_ASSERT(patch.consistent());
   outContacts.clear();
   outCounters = DetectionCounters{};
   outCounters.facesGathered = patch.faceCount();

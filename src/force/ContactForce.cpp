@@ -2,6 +2,7 @@
 // Copyright (c) 2026 The ThinTool developers
 #include <thintool/force/ContactForce.h>
 
+#include <thintool/core/Assert.h>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -119,6 +120,7 @@ void computeContactForces(const ToolModel& model, const Pose& toolPose, Real ski
                           const std::vector<Contact>& contacts, const RestShape& rest, const RigidFit& rigidFit,
                           const ForceSettings& settings, Real dt, ForceHistory& history,
                           std::vector<FaceForce>& outForces) {
+  THINTOOL_ASSERT(patch.consistent());
   outForces.clear();
   ++history.m_step;
   if (!settings.enabled || !(dt > 0)) {

@@ -2,6 +2,7 @@
 // Copyright (c) 2026 The ThinTool developers
 #include <thintool/response/Response.h>
 
+#include <thintool/core/Assert.h>
 #include <thintool/geometry/Ccd.h>
 
 #include <algorithm>
@@ -133,6 +134,7 @@ void computeResponse(const ToolModel& model, const Pose& toolPose, const Pose& p
                      const SoftPatch& patch, const std::vector<Contact>& contacts, Real skin, Real dt,
                      const ResponseSettings& settings, ResponseWorkspace& work,
                      std::vector<NodeCorrection>& outCorrections, Wrench& outWrench) {
+  THINTOOL_ASSERT(patch.consistent());
   outCorrections.clear();
   outWrench = Wrench{};
   if (settings.kind == ResponseKind::None || !(dt > 0)) {
@@ -147,6 +149,7 @@ void computeResponse(const ToolModel& model, const Pose& toolPose, const Pose& p
   work.m_entryDepth.clear();
 
   auto slotOf = [&](Index vertex) -> NodeCorrection& {
+    THINTOOL_ASSERT(vertex < vertexCount);
     if (work.m_slot[vertex] == kInvalidIndex) {
       work.m_slot[vertex] = static_cast<Index>(outCorrections.size());
       work.m_positions[vertex] = patch.positions[vertex];
@@ -314,6 +317,7 @@ void computeHolds(const ToolModel& model, const Pose& toolPose, const Pose& prev
                   ResponseWorkspace& work, std::vector<NodeHold>& outHolds) {
   outHolds.clear();
   for (const NodeCorrection& correction : corrections) {
+    THINTOOL_ASSERT(correction.vertex < patch.vertexCount());
     const Vec3 at = patch.positions[correction.vertex] + correction.displacement;
     outHolds.push_back({correction.vertex, correction.normal, -dot(correction.normal, at), correction.sticks});
   }

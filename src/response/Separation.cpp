@@ -2,6 +2,7 @@
 // Copyright (c) 2026 The ThinTool developers
 #include <thintool/response/Separation.h>
 
+#include <thintool/core/Assert.h>
 #include <thintool/geometry/Ccd.h>
 
 #include <algorithm>
@@ -600,6 +601,12 @@ SeparationCounts separateFromPiece(const ToolModel& piece, const PieceMotion& mo
                                    const SeparationSettings& settings, SeparationPatch& patch) {
   SeparationCounts counts;
   const Index vertexCount = patch.vertexCount();
+  THINTOOL_ASSERT(patch.startPositions.size() == vertexCount && patch.solvedPositions.size() == vertexCount &&
+                  patch.inverseMasses.size() == vertexCount && patch.nodeIds.size() == vertexCount &&
+                  patch.moved.size() == vertexCount && patch.directions.size() == vertexCount);
+  for (const std::array<Index, 3>& face : patch.faces) {
+    THINTOOL_ASSERT(face[0] < vertexCount && face[1] < vertexCount && face[2] < vertexCount);
+  }
   if (vertexCount == 0) return counts;
   const Real clearance = settings.clearance;
   const Pose& end = motion.end();

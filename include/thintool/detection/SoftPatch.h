@@ -40,6 +40,22 @@ struct SoftPatch {
   }
   Index vertexCount() const { return static_cast<Index>(positions.size()); }
   Index faceCount() const { return static_cast<Index>(faces.size()); }
+
+  /// The arrays describe the same vertices and faces, and every face's vertices are in range: what
+  /// the glue's gather guarantees the stages (checked by THINTOOL_ASSERT, core/Assert.h).
+  bool consistent() const {
+    const std::size_t n = positions.size();
+    if (previousPositions.size() != n || inverseMasses.size() != n || nodeIds.size() != n ||
+        !(checkedPositions.empty() || checkedPositions.size() == n) || faceIds.size() != faces.size()) {
+      return false;
+    }
+    for (const std::array<Index, 3>& face : faces) {
+      for (Index v : face) {
+        if (v >= n) return false;
+      }
+    }
+    return true;
+  }
 };
 
 /// A query into the whole soft surface, beyond the patch: check 2's reverse ray must be able to
