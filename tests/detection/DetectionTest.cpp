@@ -135,6 +135,7 @@ TEST(Detection, ContactsReportWhereTheRayMetTheFace) {
   // One big soft triangle 3 mm inside a plate's underside.
   SoftPatch patch;
   patch.positions = {{-1, 0.003, -1}, {1, 0.003, -1}, {0, 0.003, 2}};
+  patch.previousPositions = patch.positions;
   patch.inverseMasses = {1, 1, 1};
   patch.nodeIds = {0, 1, 2};
   patch.faces = {{0, 2, 1}};  // facing up
