@@ -8,7 +8,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 namespace thintool {
 
@@ -113,14 +112,7 @@ struct Sweep {
     }
     if (plane == kInvalidIndex) {
       // Inside from the start with no memory: the face it is least inside of.
-      Real best = -std::numeric_limits<Real>::max();
-      for (Index p = 0; p < model.planes.size(); ++p) {
-        const Real d = model.planes[p].signedDistance(start[v]);
-        if (d > best) {
-          best = d;
-          plane = p;
-        }
-      }
+      outsideDistance(model.planes, start[v], &plane);
     }
     memory.setNodeSide(id, plane);
     const Plane& face = model.planes[plane];

@@ -3,9 +3,9 @@
 #include <thintool/force/ContactForce.h>
 
 #include <thintool/core/Assert.h>
+
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 namespace thintool {
 
@@ -145,18 +145,10 @@ void computeContactForces(const ToolModel& model, const Pose& toolPose, Real ski
     if (lengthSquared(vertexNormal[v]) > 0 || !isFinite(patch.positions[v])) {
       continue;
     }
-    const Vec3 local = toolPose.applyInverse(patch.positions[v]);
-    Real outside = -std::numeric_limits<Real>::max();
-    const Plane* nearest = nullptr;
-    for (const Plane& plane : model.planes) {
-      const Real distance = plane.signedDistance(local);
-      if (distance > outside) {
-        outside = distance;
-        nearest = &plane;
-      }
-    }
-    if (nearest != nullptr && outside <= reach) {
-      vertexNormal[v] = toolPose.rotation * nearest->normal;
+    Index nearest = kInvalidIndex;
+    const Real outside = outsideDistance(model.planes, toolPose.applyInverse(patch.positions[v]), &nearest);
+    if (nearest != kInvalidIndex && outside <= reach) {
+      vertexNormal[v] = toolPose.rotation * model.planes[nearest].normal;
     }
   }
   const Real smoothing = settings.rateCutoff > 0 ? 1 - std::exp(-2 * kPi * settings.rateCutoff * dt) : 1;
