@@ -42,8 +42,6 @@ namespace detail {
 class CollisionPass;
 void beginCollisionPass(btCollisionWorld& world);
 }  // namespace detail
-Tool& addTool(btCollisionWorld& world, btCollisionObject& body, const ToolOptions& options);
-bool removeTool(btCollisionWorld& world, const btCollisionObject& body);
 
 class CollisionConfiguration : public btSoftBodyRigidBodyCollisionConfiguration {
  public:

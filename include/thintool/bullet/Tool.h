@@ -106,8 +106,6 @@ struct ToolForce {
 
 class Tool;
 struct ToolOptions;
-Tool& addTool(btCollisionWorld& world, btCollisionObject& body, const ToolOptions& options);
-bool removeTool(btCollisionWorld& world, const btCollisionObject& body);
 
 struct ToolStepReport {
   std::vector<ToolContact> contacts;
