@@ -247,6 +247,7 @@ ToolOptions optionsFor(const SceneSpec& scene, const ToolSpec& tool) {
   }
   options.separation.enabled = options.separation.enabled && scene.lastWord;
   options.response.holdInSolver = options.response.holdInSolver && scene.holds;
+  options.energyGuard.enabled = options.energyGuard.enabled && scene.energyGuard;
   return options;
 }
 

@@ -348,11 +348,12 @@ SceneSpec parseScene(const std::string& text, const std::string& sourceName, con
     }
   }
   if (const std::optional<JsonField> options = scene.find("thintool")) {
-    options->allowOnly({"force", "friction", "last_word", "holds"});
+    options->allowOnly({"force", "friction", "last_word", "holds", "energy_guard"});
     spec.force = options->boolean("force", spec.force);
     if (options->has("friction")) spec.friction = options->boolean("friction", false);
     spec.lastWord = options->boolean("last_word", spec.lastWord);
     spec.holds = options->boolean("holds", spec.holds);
+    spec.energyGuard = options->boolean("energy_guard", spec.energyGuard);
   }
   if (spec.duration == 0) {
     double end = 0;

@@ -142,6 +142,7 @@ struct SceneSpec {
   std::optional<bool> friction;
   bool lastWord = true;        ///< ThinTool: the last word after the soft solver (ToolOptions::separation); "paper" and "ray-only" never have it
   bool holds = true;           ///< ThinTool: the response's holds in the soft solver (ResponseSettings::holdInSolver)
+  bool energyGuard = true;     ///< ThinTool: the energy guard after the soft solver (ToolOptions::energyGuard); "paper" and "ray-only" never have it
 };
 
 /// An override applied to the file's JSON before it is read: path=value, the path in dots and

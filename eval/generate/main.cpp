@@ -34,6 +34,7 @@ inside the soft body, pierced faces, penetration deeper than 0.1 mm, non-finite 
   --algorithm X      swept (default), paper, ray-only, stock-A, stock-B or stock-E
   --no-last-word     ThinTool without its last word after Bullet's soft solve (ToolOptions::separation)
   --no-holds         ThinTool without its holds in Bullet's soft solve (ResponseSettings::holdInSolver)
+  --no-energy-guard  ThinTool without its energy guard after Bullet's soft solve (ToolOptions::energyGuard)
   --verbose          print each scene's description and every step's ground truth
   --scenes DIR       where vessel.obj is (default: the source tree's eval/scenes)
 )";
@@ -89,6 +90,7 @@ int main(int argc, char** argv) {
   bool verbose = false;
   bool lastWord = true;
   bool holds = true;
+  bool energyGuard = true;
   std::string sceneFolder = THINTOOL_EVAL_SCENES;
   try {
     for (int i = 1; i < argc; ++i) {
@@ -110,6 +112,8 @@ int main(int argc, char** argv) {
         lastWord = false;
       } else if (arg == "--no-holds") {
         holds = false;
+      } else if (arg == "--no-energy-guard") {
+        energyGuard = false;
       } else if (arg == "--verbose") {
         verbose = true;
       } else if (arg == "--scenes") {
@@ -141,6 +145,7 @@ int main(int argc, char** argv) {
       scene.algorithm = algorithm;
       scene.lastWord = lastWord;
       scene.holds = holds;
+      scene.energyGuard = energyGuard;
       if (verbose) std::printf("%s\n", describeScene(scene).c_str());
       RunOptions options;
       if (verbose) {
@@ -164,10 +169,10 @@ int main(int argc, char** argv) {
     nonFinite += verdict.nonFinite;
     energy += verdict.energy;
     refused += verdict.refused;
-    std::printf("seed %llu failed: %s; reproduce: %s --seed %llu --algorithm %s%s%s --verbose\n",
+    std::printf("seed %llu failed: %s; reproduce: %s --seed %llu --algorithm %s%s%s%s --verbose\n",
                 static_cast<unsigned long long>(seed), joinReasons(verdict).c_str(), argv[0],
                 static_cast<unsigned long long>(seed), algorithmKey(algorithm), lastWord ? "" : " --no-last-word",
-                holds ? "" : " --no-holds");
+                holds ? "" : " --no-holds", energyGuard ? "" : " --no-energy-guard");
     std::fflush(stdout);
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();

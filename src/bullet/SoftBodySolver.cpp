@@ -2,6 +2,7 @@
 // Copyright (c) 2026 The ThinTool developers
 #include <thintool/bullet/SoftBodySolver.h>
 
+#include "PairState.h"
 #include "SoftSurface.h"
 #include "ToolReaction.h"
 
@@ -59,6 +60,7 @@ Aabb sweptBounds(const Aabb& local, const PieceMotion& motion) {
 SoftBodySolver::SoftBodySolver(CollisionConfiguration& configuration) : m_configuration(configuration) {}
 
 void SoftBodySolver::solveConstraints(btScalar timeStep) {
+  measureEnergy(timeStep);
   btDefaultSoftBodySolver::solveConstraints(timeStep);
   ++m_step;
   std::vector<Tool*>& tools = m_active;
@@ -79,11 +81,140 @@ void SoftBodySolver::solveConstraints(btScalar timeStep) {
     }
     if (!moved || m_piecesNear <= 1) break;
   }
+  guardEnergy();
   for (Tool* tool : tools) {
     tool->m_separatedPose = toPose(tool->body().getWorldTransform());
     tool->m_hasSeparatedPose = true;
     tool->m_separationJump = false;
     tool->m_lastWord.ran = true;
+  }
+}
+
+void SoftBodySolver::measureEnergy(btScalar timeStep) {
+  if (m_energy.size() < static_cast<std::size_t>(m_softBodySet.size())) {
+    m_energy.resize(static_cast<std::size_t>(m_softBodySet.size()));
+  }
+  const Real inverseStep = 1 / Real(timeStep);
+  for (int s = 0; s < m_softBodySet.size(); ++s) {
+    btSoftBody& softBody = *m_softBodySet[s];
+    BodyEnergy& energy = m_energy[static_cast<std::size_t>(s)];
+    energy = BodyEnergy{};
+    bool guarded = false;
+    // Guarded when a tool's response moved a node of it in the collision pass.
+    for (Tool* tool : m_configuration.tools()) {
+      const EnergyGuardSettings& settings = tool->m_options.energyGuard;
+      if (!settings.enabled) continue;
+      // The tool's motion over the step, as the last word reads it: a point of the tool at x moved
+      // from before·now⁻¹·x.
+      const Pose now = toPose(tool->body().getWorldTransform());
+      const Pose before = tool->m_hasSeparatedPose && !tool->m_separationJump ? tool->m_separatedPose : now;
+      for (const auto& pair : tool->m_pairs) {
+        if (pair->softBody != &softBody || !pair->live || pair->corrections.empty()) continue;
+        guarded = true;
+        energy.speedFactor = std::max(energy.speedFactor, double(settings.speedFactor));
+        energy.energySlack = std::max(energy.energySlack, double(settings.energySlack));
+        energy.restingSpeed = std::max(energy.restingSpeed, double(settings.restingSpeed));
+        for (const NodeCorrection& correction : pair->corrections) {
+          const Index id = pair->patch.nodeIds[correction.vertex];
+          if (id >= static_cast<Index>(softBody.m_nodes.size())) continue;
+          const btSoftBody::Node& node = softBody.m_nodes[static_cast<int>(id)];
+          const Vec3 at = toVec3(node.m_x);
+          const Vec3 toolVelocity = (at - before.apply(now.applyInverse(at))) * inverseStep;
+          if (!(node.m_im > 0) || !isFinite(toolVelocity)) continue;
+          energy.allowance += 0.5 * double(lengthSquared(toolVelocity)) / double(node.m_im);
+          energy.fastest = std::max(energy.fastest, double(length(toolVelocity)));
+        }
+      }
+    }
+    if (!guarded) continue;
+    // Each node's motion as Bullet set it up for the solve, (x - q)/dt: its forces, gravity and
+    // pose matching, less the collision pass's moves of ThinTool's response.
+    const btScalar inverseStepBt = softBody.m_sst.isdt;
+    double mass = 0;
+    double kinetic = 0;
+    btVector3 momentum(0, 0, 0);
+    for (int i = 0; i < softBody.m_nodes.size(); ++i) {
+      const btSoftBody::Node& node = softBody.m_nodes[i];
+      if (!(node.m_im > 0)) continue;
+      const double m = 1 / double(node.m_im);
+      const btVector3 velocity = (node.m_x - node.m_q) * inverseStepBt;
+      mass += m;
+      kinetic += 0.5 * m * double(velocity.length2());
+      momentum += velocity * btScalar(m);
+      energy.fastest = std::max(energy.fastest, double(node.m_v.length()));
+    }
+    for (Tool* tool : m_configuration.tools()) {
+      if (!tool->m_options.energyGuard.enabled) continue;
+      for (const auto& pair : tool->m_pairs) {
+        if (pair->softBody != &softBody || !pair->live) continue;
+        for (const NodeCorrection& correction : pair->corrections) {
+          const Index id = pair->patch.nodeIds[correction.vertex];
+          if (id >= static_cast<Index>(softBody.m_nodes.size()) || !isFinite(correction.displacement)) continue;
+          const btSoftBody::Node& node = softBody.m_nodes[static_cast<int>(id)];
+          if (!(node.m_im > 0)) continue;
+          const double m = 1 / double(node.m_im);
+          const btVector3 moved = (node.m_x - node.m_q) * inverseStepBt;
+          const btVector3 own = moved - toBt(correction.displacement) * inverseStepBt;
+          kinetic += 0.5 * m * double(own.length2() - moved.length2());
+          momentum += (own - moved) * btScalar(m);
+        }
+      }
+    }
+    const double internal = mass > 0 ? kinetic - 0.5 * double(momentum.length2()) / mass : 0;
+    if (std::isfinite(internal) && std::isfinite(energy.fastest)) energy.predicted = std::max(internal, 0.0);
+  }
+}
+
+void SoftBodySolver::guardEnergy() {
+  for (int s = 0; s < m_softBodySet.size(); ++s) {
+    const BodyEnergy& energy = m_energy[static_cast<std::size_t>(s)];
+    if (energy.predicted < 0) continue;
+    btSoftBody& softBody = *m_softBodySet[s];
+    // The energy about the centre of mass, as the solve left it: the body's motion as a whole is
+    // the tool's push or its fall, which the bound must not damp.
+    double mass = 0;
+    double kinetic = 0;
+    btVector3 momentum(0, 0, 0);
+    for (int i = 0; i < softBody.m_nodes.size(); ++i) {
+      const btSoftBody::Node& node = softBody.m_nodes[i];
+      if (!(node.m_im > 0)) continue;
+      const double m = 1 / double(node.m_im);
+      mass += m;
+      kinetic += 0.5 * m * double(node.m_v.length2());
+      momentum += node.m_v * btScalar(m);
+    }
+    if (!(mass > 0)) continue;
+    const btVector3 mean = momentum / btScalar(mass);
+    const double internal = kinetic - 0.5 * mass * double(mean.length2());
+    const double bound = std::max((1 + energy.energySlack) * energy.predicted + energy.allowance,
+                                  0.5 * mass * energy.restingSpeed * energy.restingSpeed);
+    const btScalar scale =
+        internal > bound && std::isfinite(internal) ? btScalar(std::sqrt(bound / internal)) : btScalar(1);
+    const double removed = scale < 1 ? internal - bound : 0;
+    // No node faster than the bound: the tool gives a node its own speed at most, a stiff link a
+    // few times that within a step. Then the energy's scale, about the mean.
+    const double fastestAllowed = energy.speedFactor * std::max(1.0, energy.fastest);
+    Index slowed = 0;
+    for (int i = 0; i < softBody.m_nodes.size(); ++i) {
+      btSoftBody::Node& node = softBody.m_nodes[i];
+      if (!(node.m_im > 0)) continue;
+      const double speed = double(node.m_v.length());
+      if (speed > fastestAllowed) {
+        node.m_v *= btScalar(fastestAllowed / speed);
+        ++slowed;
+      }
+      if (scale < 1) node.m_v = mean + (node.m_v - mean) * scale;
+    }
+    if (slowed == 0 && removed == 0) continue;
+    for (Tool* tool : m_configuration.tools()) {
+      for (const auto& pair : tool->m_pairs) {
+        if (pair->softBody == &softBody && pair->live) {
+          tool->m_lastWord.nodesSlowed += slowed;
+          tool->m_lastWord.energyRemoved += removed;
+          break;
+        }
+      }
+    }
   }
 }
 

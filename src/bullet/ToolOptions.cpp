@@ -40,6 +40,13 @@ std::string validateToolOptions(const ToolOptions& options) {
                options.response.friction.kineticCoefficient <= options.response.friction.staticCoefficient)) {
     problem << "response.friction.kineticCoefficient must be finite, >= 0 and <= staticCoefficient, got "
             << options.response.friction.kineticCoefficient;
+  } else if (options.energyGuard.enabled &&
+             !(std::isfinite(options.energyGuard.speedFactor) && options.energyGuard.speedFactor >= 1)) {
+    problem << "energyGuard.speedFactor must be finite and >= 1, got " << options.energyGuard.speedFactor;
+  } else if (options.energyGuard.enabled && !isLength(options.energyGuard.energySlack)) {
+    problem << "energyGuard.energySlack must be finite and >= 0, got " << options.energyGuard.energySlack;
+  } else if (options.energyGuard.enabled && !isLength(options.energyGuard.restingSpeed)) {
+    problem << "energyGuard.restingSpeed must be a finite speed >= 0 m/s, got " << options.energyGuard.restingSpeed;
   } else if (options.separation.enabled && !validateSeparationSettings(options.separation).empty()) {
     problem << validateSeparationSettings(options.separation);
   } else if (options.force.enabled) {

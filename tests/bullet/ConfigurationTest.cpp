@@ -153,6 +153,24 @@ TEST(Configuration, InvalidOptionsNameTheToolAndTheField) {
     EXPECT_NE(message.find("skinGrowthSpeed"), std::string::npos) << message;
   }
 
+  for (const Real factor : {Real(0.5), Real(std::nan("")), Real(INFINITY)}) {
+    options = ToolOptions{};
+    options.energyGuard.speedFactor = factor;
+    message = errorOf([&] { addTool(w.world, w.body, options); });
+    EXPECT_NE(message.find("energyGuard.speedFactor"), std::string::npos) << message;
+  }
+  options = ToolOptions{};
+  options.energyGuard.energySlack = -0.1;
+  message = errorOf([&] { addTool(w.world, w.body, options); });
+  EXPECT_NE(message.find("energyGuard.energySlack"), std::string::npos) << message;
+  options = ToolOptions{};
+  options.energyGuard.restingSpeed = -1;
+  message = errorOf([&] { addTool(w.world, w.body, options); });
+  EXPECT_NE(message.find("energyGuard.restingSpeed"), std::string::npos) << message;
+  options.energyGuard.enabled = false;  // a guard that is off is not checked
+  EXPECT_NO_THROW(addTool(w.world, w.body, options));
+  EXPECT_TRUE(removeTool(w.world, w.body));
+
   options = ToolOptions{};
   options.sampling.spacing = std::nan("");
   message = errorOf([&] { addTool(w.world, w.body, options); });

@@ -19,8 +19,9 @@
 /// a moved node's velocity along its move to the faster of its own and the tool's (no bounce). A
 /// dynamic tool receives the moved nodes' reaction as impulses, unless its force model already
 /// reacts on it (ForceSettings::applyToDynamicTool). Soft bodies that ignore the tool
-/// (m_collisionDisabledObjects) are left alone. Tool::report() says what the stage did and what
-/// it left (ToolDiagnostics::lastWord).
+/// (m_collisionDisabledObjects) are left alone. Last, the energy guard (EnergyGuardSettings)
+/// bounds the velocities of each soft body a tool's response moved in the step. Tool::report()
+/// says what the stages did and what they left (ToolDiagnostics::lastWord).
 
 #include <thintool/response/Separation.h>
 
@@ -45,6 +46,22 @@ class SoftBodySolver : public btDefaultSoftBodySolver {
   void solveConstraints(btScalar timeStep) override;
 
  private:
+  // The energy guard's measures of one soft body in this step (EnergyGuardSettings).
+  struct BodyEnergy {
+    double predicted = -1;  // kinetic energy about the centre of mass before the solve (J); < 0: not guarded
+    double allowance = 0;   // ½·m·u² over the nodes ThinTool moved, u the tool's speed there (J)
+    double fastest = 0;     // fastest node as predicted, or tool point at a node ThinTool moved (m/s)
+    double speedFactor = 1;
+    double energySlack = 0;
+    double restingSpeed = 0;
+  };
+
+  // Before Bullet's solve: which soft bodies are guarded, their predicted energy and fastest node,
+  // and what the collision pass's moves allow.
+  void measureEnergy(btScalar timeStep);
+  // After the last word: the guarded bodies' velocities brought within their bounds.
+  void guardEnergy();
+
   // One pass of the tool's pieces over the soft bodies; returns whether it moved anything.
   bool separate(Tool& tool);
   SeparationCounts separatePiece(Tool& tool, const ToolModel& piece, const PieceMotion& motion, btSoftBody& softBody);
@@ -90,6 +107,7 @@ class SoftBodySolver : public btDefaultSoftBodySolver {
   std::vector<unsigned char> m_faceInPatch;  // soft face -> whether the patch has it
   std::vector<Index> m_patchFaces;           // the soft faces the patch has
   std::vector<SoftBodyCache> m_caches;
+  std::vector<BodyEnergy> m_energy;  // one per soft body of the world, this step
   std::vector<Index> m_nearNodes;  // soft nodes near the piece's reach grown by the face reach
   // soft node -> its contact in the soft body's m_rcontacts with a static or kinematic body, -1 for
   // none; filled only while a dynamic tool takes the reaction of moved nodes

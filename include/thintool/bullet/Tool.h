@@ -45,6 +45,10 @@ struct LastWordDiagnostics {
   bool ran = false;
   SeparationCounts counts;  ///< moves made, and violations left (counts.nodesInside, counts.facesPierced)
   double microseconds = 0;
+  /// The energy guard (EnergyGuardSettings), over the soft bodies near the tool: nodes it slowed
+  /// to the speed bound, and kinetic energy it took out to meet the energy bound (J).
+  Index nodesSlowed = 0;
+  double energyRemoved = 0;
   /// Soft nodes left inside the tool or soft faces left pierced by it after the stage: the
   /// invariant, expected 0.
   Index violations() const { return counts.nodesInside + counts.facesPierced; }

@@ -16,6 +16,31 @@
 
 namespace thintool {
 
+/// The energy guard of thintool::SoftBodySolver. A tool's contacts move soft nodes in Bullet's
+/// collision pass, and Bullet's solve turns every move into velocity, its holds and links carrying
+/// the kick to the neighbours; a pressure body squeezed against a tool, or a sheet that Bullet's
+/// own solve already shakes, can then gain energy step after step until it flies apart. A passive
+/// contact cannot do that: a node hit by a tool point moving at u leaves at about u at most, and
+/// gains at most ½·m·u². So, for each soft body that the tool's response moved in the collision
+/// pass, after Bullet's solve and the last word:
+/// - no node moves faster than speedFactor times the fastest of: the body's nodes as Bullet
+///   predicted them before the solve (its forces and gravity applied), the tool's points at the
+///   nodes the response moved, and 1 m/s;
+/// - the body's kinetic energy about its centre of mass, as the solve left it, is at most
+///   (1 + energySlack) times the predicted one plus ½·m·u² for each node the response moved, or
+///   ½·M·restingSpeed² for its mass M, whichever is more. The solve also turns the body's elastic
+///   energy (stretched links, pressure, pose matching) into motion, which the prediction does not
+///   see: internal motion up to that root-mean-square speed is taken as the body's own.
+/// Over either bound, velocities are scaled down to it (about the centre of mass for the energy,
+/// so that a falling or pushed body keeps its motion as a whole); positions are never touched.
+/// It costs three passes over the body's nodes in the steps the response moves a node of it.
+struct EnergyGuardSettings {
+  bool enabled = true;
+  Real speedFactor = 2;    ///< >= 1
+  Real energySlack = 0.05;  ///< relative, >= 0
+  Real restingSpeed = 1;    ///< m/s, >= 0
+};
+
 struct ToolOptions {
   /// Names the tool in error messages and reports; empty picks "tool <n>".
   std::string name;
@@ -47,6 +72,10 @@ struct ToolOptions {
   /// inside the tool and no soft face pierced by it. Runs only in a world whose soft-body solver is
   /// a thintool::SoftBodySolver.
   SeparationSettings separation;
+  /// After the last word, the soft bodies near the tool leave the step no faster, and with no
+  /// more energy, than their own forces and the tool's motion can give them. Runs only in a world
+  /// whose soft-body solver is a thintool::SoftBodySolver.
+  EnergyGuardSettings energyGuard;
   /// The tissue's force on the tool (force/ContactForce.h): off by default.
   ForceSettings force;
 
@@ -56,6 +85,7 @@ struct ToolOptions {
     ToolOptions options;
     options.swept = false;
     options.separation.enabled = false;
+    options.energyGuard.enabled = false;
     options.response.friction.enabled = false;  // the paper's response is frictionless
     return options;
   }
