@@ -27,10 +27,12 @@ namespace thintool {
 ///   predicted them before the solve (its forces and gravity applied), the tool's points at the
 ///   nodes the response moved, and 1 m/s;
 /// - the body's kinetic energy about its centre of mass, as the solve left it, is at most
-///   (1 + energySlack) times the predicted one plus ½·m·u² for each node the response moved, or
-///   ½·M·restingSpeed² for its mass M, whichever is more. The solve also turns the body's elastic
-///   energy (stretched links, pressure, pose matching) into motion, which the prediction does not
-///   see: internal motion up to that root-mean-square speed is taken as the body's own.
+///   (1 + energySlack) times the same energy before the solve (each node's motion as Bullet set
+///   it up, (x - q)/dt, pose matching included, less the response's moves) plus ½·m·u² for each
+///   node the response moved, or ½·M·restingSpeed² for its mass M, whichever is more. The solve
+///   also turns the body's elastic energy (stretched links, pressure) into motion, which the
+///   energy before it does not see: internal motion up to that root-mean-square speed is taken as
+///   the body's own.
 /// Over either bound, velocities are scaled down to it (about the centre of mass for the energy,
 /// so that a falling or pushed body keeps its motion as a whole); positions are never touched.
 /// It costs three passes over the body's nodes in the steps the response moves a node of it.
