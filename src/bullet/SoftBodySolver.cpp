@@ -55,6 +55,38 @@ Aabb sweptBounds(const Aabb& local, const PieceMotion& motion) {
   return box.expanded(radius * (1 - std::cos(motion.turn() / (2 * motion.samples()))));
 }
 
+// Mass, kinetic energy and momentum of a soft body's free nodes, each at the velocity velocityOf
+// gives it.
+struct BodyMotion {
+  double mass = 0;
+  double kinetic = 0;
+  btVector3 momentum{0, 0, 0};
+};
+
+template <class VelocityOf>
+BodyMotion motionOf(const btSoftBody& softBody, VelocityOf velocityOf) {
+  BodyMotion motion;
+  for (int i = 0; i < softBody.m_nodes.size(); ++i) {
+    const btSoftBody::Node& node = softBody.m_nodes[i];
+    if (!(node.m_im > 0)) continue;
+    const double m = 1 / double(node.m_im);
+    const btVector3 velocity = velocityOf(node);
+    motion.mass += m;
+    motion.kinetic += 0.5 * m * double(velocity.length2());
+    motion.momentum += velocity * btScalar(m);
+  }
+  return motion;
+}
+
+// The free node a correction of the pair moved, or nullptr (pinned, or no longer in the body).
+const btSoftBody::Node* movedNode(const btSoftBody& softBody, const detail::PairState& pair,
+                                  const NodeCorrection& correction) {
+  const Index id = pair.patch.nodeIds[correction.vertex];
+  if (id >= static_cast<Index>(softBody.m_nodes.size())) return nullptr;
+  const btSoftBody::Node& node = softBody.m_nodes[static_cast<int>(id)];
+  return node.m_im > 0 ? &node : nullptr;
+}
+
 }  // namespace
 
 SoftBodySolver::SoftBodySolver(CollisionConfiguration& configuration) : m_configuration(configuration) {}
@@ -90,6 +122,10 @@ void SoftBodySolver::solveConstraints(btScalar timeStep) {
   }
 }
 
+Pose SoftBodySolver::stepStart(const Tool& tool, const Pose& now) {
+  return tool.m_hasSeparatedPose && !tool.m_separationJump ? tool.m_separatedPose : now;
+}
+
 void SoftBodySolver::measureEnergy(btScalar timeStep) {
   if (m_energy.size() < static_cast<std::size_t>(m_softBodySet.size())) {
     m_energy.resize(static_cast<std::size_t>(m_softBodySet.size()));
@@ -99,15 +135,15 @@ void SoftBodySolver::measureEnergy(btScalar timeStep) {
     btSoftBody& softBody = *m_softBodySet[s];
     BodyEnergy& energy = m_energy[static_cast<std::size_t>(s)];
     energy = BodyEnergy{};
-    bool guarded = false;
     // Guarded when a tool's response moved a node of it in the collision pass.
+    bool guarded = false;
     for (Tool* tool : m_configuration.tools()) {
       const EnergyGuardSettings& settings = tool->m_options.energyGuard;
       if (!settings.enabled) continue;
       // The tool's motion over the step, as the last word reads it: a point of the tool at x moved
       // from before·now⁻¹·x.
       const Pose now = toPose(tool->body().getWorldTransform());
-      const Pose before = tool->m_hasSeparatedPose && !tool->m_separationJump ? tool->m_separatedPose : now;
+      const Pose before = stepStart(*tool, now);
       for (const auto& pair : tool->m_pairs) {
         if (pair->softBody != &softBody || !pair->live || pair->corrections.empty()) continue;
         guarded = true;
@@ -115,52 +151,42 @@ void SoftBodySolver::measureEnergy(btScalar timeStep) {
         energy.energySlack = std::max(energy.energySlack, double(settings.energySlack));
         energy.restingSpeed = std::max(energy.restingSpeed, double(settings.restingSpeed));
         for (const NodeCorrection& correction : pair->corrections) {
-          const Index id = pair->patch.nodeIds[correction.vertex];
-          if (id >= static_cast<Index>(softBody.m_nodes.size())) continue;
-          const btSoftBody::Node& node = softBody.m_nodes[static_cast<int>(id)];
-          const Vec3 at = toVec3(node.m_x);
+          const btSoftBody::Node* node = movedNode(softBody, *pair, correction);
+          if (node == nullptr) continue;
+          const Vec3 at = toVec3(node->m_x);
           const Vec3 toolVelocity = (at - before.apply(now.applyInverse(at))) * inverseStep;
-          if (!(node.m_im > 0) || !isFinite(toolVelocity)) continue;
-          energy.allowance += 0.5 * double(lengthSquared(toolVelocity)) / double(node.m_im);
+          if (!isFinite(toolVelocity)) continue;
+          energy.allowance += 0.5 * double(lengthSquared(toolVelocity)) / double(node->m_im);
           energy.fastest = std::max(energy.fastest, double(length(toolVelocity)));
         }
       }
     }
     if (!guarded) continue;
     // Each node's motion as Bullet set it up for the solve, (x - q)/dt: its forces, gravity and
-    // pose matching, less the collision pass's moves of ThinTool's response.
+    // pose matching; the fastest node is read from the velocity Bullet predicted, in the same pass.
     const btScalar inverseStepBt = softBody.m_sst.isdt;
-    double mass = 0;
-    double kinetic = 0;
-    btVector3 momentum(0, 0, 0);
-    for (int i = 0; i < softBody.m_nodes.size(); ++i) {
-      const btSoftBody::Node& node = softBody.m_nodes[i];
-      if (!(node.m_im > 0)) continue;
-      const double m = 1 / double(node.m_im);
-      const btVector3 velocity = (node.m_x - node.m_q) * inverseStepBt;
-      mass += m;
-      kinetic += 0.5 * m * double(velocity.length2());
-      momentum += velocity * btScalar(m);
+    BodyMotion motion = motionOf(softBody, [&](const btSoftBody::Node& node) {
       energy.fastest = std::max(energy.fastest, double(node.m_v.length()));
-    }
+      return (node.m_x - node.m_q) * inverseStepBt;
+    });
+    // The response's moves are not the body's own motion: what they add is taken back out.
     for (Tool* tool : m_configuration.tools()) {
       if (!tool->m_options.energyGuard.enabled) continue;
       for (const auto& pair : tool->m_pairs) {
         if (pair->softBody != &softBody || !pair->live) continue;
         for (const NodeCorrection& correction : pair->corrections) {
-          const Index id = pair->patch.nodeIds[correction.vertex];
-          if (id >= static_cast<Index>(softBody.m_nodes.size()) || !isFinite(correction.displacement)) continue;
-          const btSoftBody::Node& node = softBody.m_nodes[static_cast<int>(id)];
-          if (!(node.m_im > 0)) continue;
-          const double m = 1 / double(node.m_im);
-          const btVector3 moved = (node.m_x - node.m_q) * inverseStepBt;
+          const btSoftBody::Node* node = movedNode(softBody, *pair, correction);
+          if (node == nullptr || !isFinite(correction.displacement)) continue;
+          const double m = 1 / double(node->m_im);
+          const btVector3 moved = (node->m_x - node->m_q) * inverseStepBt;
           const btVector3 own = moved - toBt(correction.displacement) * inverseStepBt;
-          kinetic += 0.5 * m * double(own.length2() - moved.length2());
-          momentum += (own - moved) * btScalar(m);
+          motion.kinetic += 0.5 * m * double(own.length2() - moved.length2());
+          motion.momentum += (own - moved) * btScalar(m);
         }
       }
     }
-    const double internal = mass > 0 ? kinetic - 0.5 * double(momentum.length2()) / mass : 0;
+    const double internal =
+        motion.mass > 0 ? motion.kinetic - 0.5 * double(motion.momentum.length2()) / motion.mass : 0;
     if (std::isfinite(internal) && std::isfinite(energy.fastest)) energy.predicted = std::max(internal, 0.0);
   }
 }
@@ -172,22 +198,12 @@ void SoftBodySolver::guardEnergy() {
     btSoftBody& softBody = *m_softBodySet[s];
     // The energy about the centre of mass, as the solve left it: the body's motion as a whole is
     // the tool's push or its fall, which the bound must not damp.
-    double mass = 0;
-    double kinetic = 0;
-    btVector3 momentum(0, 0, 0);
-    for (int i = 0; i < softBody.m_nodes.size(); ++i) {
-      const btSoftBody::Node& node = softBody.m_nodes[i];
-      if (!(node.m_im > 0)) continue;
-      const double m = 1 / double(node.m_im);
-      mass += m;
-      kinetic += 0.5 * m * double(node.m_v.length2());
-      momentum += node.m_v * btScalar(m);
-    }
-    if (!(mass > 0)) continue;
-    const btVector3 mean = momentum / btScalar(mass);
-    const double internal = kinetic - 0.5 * mass * double(mean.length2());
+    const BodyMotion motion = motionOf(softBody, [](const btSoftBody::Node& node) { return node.m_v; });
+    if (!(motion.mass > 0)) continue;
+    const btVector3 mean = motion.momentum / btScalar(motion.mass);
+    const double internal = motion.kinetic - 0.5 * motion.mass * double(mean.length2());
     const double bound = std::max((1 + energy.energySlack) * energy.predicted + energy.allowance,
-                                  0.5 * mass * energy.restingSpeed * energy.restingSpeed);
+                                  0.5 * motion.mass * energy.restingSpeed * energy.restingSpeed);
     const btScalar scale =
         internal > bound && std::isfinite(internal) ? btScalar(std::sqrt(bound / internal)) : btScalar(1);
     const double removed = scale < 1 ? internal - bound : 0;
@@ -222,7 +238,7 @@ bool SoftBodySolver::separate(Tool& tool) {
   const auto start = std::chrono::steady_clock::now();
   const SeparationSettings& settings = tool.m_options.separation;
   const Pose now = toPose(tool.body().getWorldTransform());
-  const Pose before = tool.m_hasSeparatedPose && !tool.m_separationJump ? tool.m_separatedPose : now;
+  const Pose before = stepStart(tool, now);
   // What is left is what the latest pass left; the moves add up over the passes.
   SeparationCounts& counts = tool.m_lastWord.counts;
   counts.nodesInside = 0;

@@ -56,6 +56,9 @@ class SoftBodySolver : public btDefaultSoftBodySolver {
     double restingSpeed = 0;
   };
 
+  // Where the tool's motion over this step starts: where the last word left it, or where it is
+  // now after a jump (Tool::resetMotion).
+  static Pose stepStart(const Tool& tool, const Pose& now);
   // Before Bullet's solve: which soft bodies are guarded, their predicted energy and fastest node,
   // and what the collision pass's moves allow.
   void measureEnergy(btScalar timeStep);
