@@ -601,12 +601,7 @@ SeparationCounts separateFromPiece(const ToolModel& piece, const PieceMotion& mo
                                    const SeparationSettings& settings, SeparationPatch& patch) {
   SeparationCounts counts;
   const Index vertexCount = patch.vertexCount();
-  THINTOOL_ASSERT(patch.startPositions.size() == vertexCount && patch.solvedPositions.size() == vertexCount &&
-                  patch.inverseMasses.size() == vertexCount && patch.nodeIds.size() == vertexCount &&
-                  patch.moved.size() == vertexCount && patch.directions.size() == vertexCount);
-  for (const std::array<Index, 3>& face : patch.faces) {
-    THINTOOL_ASSERT(face[0] < vertexCount && face[1] < vertexCount && face[2] < vertexCount);
-  }
+  THINTOOL_ASSERT(patch.consistent());
   if (vertexCount == 0) return counts;
   const Real clearance = settings.clearance;
   const Pose& end = motion.end();

@@ -86,6 +86,21 @@ struct SeparationPatch {
   std::vector<unsigned char> inCluster;
 
   Index vertexCount() const { return static_cast<Index>(positions.size()); }
+  /// The per-vertex arrays agree and every face's vertices are in range: what addVertex and the
+  /// glue's gather guarantee the stage (checked by THINTOOL_ASSERT, core/Assert.h).
+  bool consistent() const {
+    const std::size_t n = positions.size();
+    if (startPositions.size() != n || solvedPositions.size() != n || inverseMasses.size() != n ||
+        nodeIds.size() != n || moved.size() != n || directions.size() != n) {
+      return false;
+    }
+    for (const std::array<Index, 3>& face : faces) {
+      for (Index v : face) {
+        if (v >= n) return false;
+      }
+    }
+    return true;
+  }
   Index addVertex(Index id, const Vec3& start, const Vec3& end, Real inverseMass) {
     nodeIds.push_back(id);
     startPositions.push_back(start);
