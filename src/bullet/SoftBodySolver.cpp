@@ -198,7 +198,11 @@ void SoftBodySolver::guardEnergy() {
     btSoftBody& softBody = *m_softBodySet[s];
     // The energy about the centre of mass, as the solve left it: the body's motion as a whole is
     // the tool's push or its fall, which the bound must not damp.
-    const BodyMotion motion = motionOf(softBody, [](const btSoftBody::Node& node) { return node.m_v; });
+    double fastest = 0;
+    const BodyMotion motion = motionOf(softBody, [&fastest](const btSoftBody::Node& node) {
+      fastest = std::max(fastest, double(node.m_v.length()));
+      return node.m_v;
+    });
     if (!(motion.mass > 0)) continue;
     const btVector3 mean = motion.momentum / btScalar(motion.mass);
     const double internal = motion.kinetic - 0.5 * motion.mass * double(mean.length2());
@@ -210,6 +214,7 @@ void SoftBodySolver::guardEnergy() {
     // No node faster than the bound: the tool gives a node its own speed at most, a stiff link a
     // few times that within a step. Then the energy's scale, about the mean.
     const double fastestAllowed = energy.speedFactor * std::max(1.0, energy.fastest);
+    if (!(scale < 1) && !(fastest > fastestAllowed)) continue;  // within both bounds: no second pass
     Index slowed = 0;
     for (int i = 0; i < softBody.m_nodes.size(); ++i) {
       btSoftBody::Node& node = softBody.m_nodes[i];
@@ -305,18 +310,32 @@ SoftBodySolver::SoftBodyCache& SoftBodySolver::cacheOf(const btSoftBody& softBod
     // The bound grows with each step's motion; after a step it did not see, it is measured anew.
     if (cache.stepSeen != m_step - 1) cache.measuredReach = -1;
     cache.stepSeen = m_step;
-    updateFaceReach(cache, softBody);
+    surveyNodes(cache, softBody);
   }
   return cache;
 }
 
-void SoftBodySolver::updateFaceReach(SoftBodyCache& cache, const btSoftBody& softBody) {
+void SoftBodySolver::surveyNodes(SoftBodyCache& cache, const btSoftBody& softBody) {
+  // One pass over the nodes serves the face reach and the body's box: the gathers of the step's
+  // pieces and passes then skip a body their reach misses without a pass of their own.
+  btScalar farthest = 0;
+  bool finite = true;
+  btVector3 lowest(BT_LARGE_FLOAT, BT_LARGE_FLOAT, BT_LARGE_FLOAT);
+  btVector3 highest = -lowest;
+  for (int i = 0; i < softBody.m_nodes.size(); ++i) {
+    const btSoftBody::Node& node = softBody.m_nodes[i];
+    const btScalar moved = (node.m_x - node.m_q).length2();
+    farthest = btMax(farthest, moved);
+    finite = finite && std::isfinite(moved);
+    lowest.setMin(node.m_x);
+    lowest.setMin(node.m_q);
+    highest.setMax(node.m_x);
+    highest.setMax(node.m_q);
+  }
+  // A node that is not finite escapes the box; the gather then looks at every node, as it must.
+  cache.boundsHold = finite;
+  cache.bounds = Aabb{toVec3(lowest), toVec3(highest)};
   if (cache.measuredReach >= 0) {
-    btScalar farthest = 0;
-    for (int i = 0; i < softBody.m_nodes.size(); ++i) {
-      const btSoftBody::Node& node = softBody.m_nodes[i];
-      farthest = btMax(farthest, (node.m_x - node.m_q).length2());
-    }
     cache.faceReach += 2 * Real(btSqrt(farthest));
     if (cache.faceReach <= 2 * cache.measuredReach + Real(1e-9)) return;
   }
@@ -380,6 +399,7 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
   const Aabb grown = swept.expanded(cache.faceReach);
   m_patch.clear();
   m_nearNodes.clear();
+  if (cache.boundsHold && !grown.overlaps(cache.bounds)) return {};
   const btSoftBody::Node* first = nodeCount > 0 ? &softBody.m_nodes[0] : nullptr;
   const auto vertexOf = [&](const btSoftBody::Node& node) {
     const auto id = static_cast<Index>(&node - first);

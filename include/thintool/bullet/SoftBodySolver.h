@@ -88,9 +88,13 @@ class SoftBodySolver : public btDefaultSoftBodySolver {
     Real faceReach = 0;
     Real measuredReach = -1;  // at the last exact measure; negative: never measured
     int stepSeen = -1;
+    // Every node at the start and the end of this step, when boundsHold (all of them finite).
+    Aabb bounds;
+    bool boundsHold = false;
   };
   SoftBodyCache& cacheOf(const btSoftBody& softBody);
-  void updateFaceReach(SoftBodyCache& cache, const btSoftBody& softBody);
+  // Once a step: the face reach, and the box of the body's nodes.
+  void surveyNodes(SoftBodyCache& cache, const btSoftBody& softBody);
   // The pinned nodes of the patch stop the dynamic tool that carries the piece short of them.
   void stopAtPinnedNodes(btRigidBody& tool, const ToolModel& piece, const Pose& pieceEnd, Real inverseStep);
   // Fills m_backingOfNode from the soft body's contacts of this step.

@@ -35,7 +35,8 @@ namespace thintool {
 ///   the body's own.
 /// Over either bound, velocities are scaled down to it (about the centre of mass for the energy,
 /// so that a falling or pushed body keeps its motion as a whole); positions are never touched.
-/// It costs three passes over the body's nodes in the steps the response moves a node of it.
+/// It costs two passes over the body's nodes in the steps the response moves a node of it, one
+/// before the solve and one after, and a third when it has to slow nodes.
 struct EnergyGuardSettings {
   bool enabled = true;
   Real speedFactor = 2;    ///< >= 1
