@@ -23,13 +23,25 @@ ctest --test-dir build-sanitize --parallel 2 --output-on-failure --exclude-regex
 CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTHINTOOL_BUILD_FUZZERS=ON \
   -DTHINTOOL_BUILD_TESTS=OFF -DTHINTOOL_BUILD_EXAMPLES=OFF -DTHINTOOL_BUILD_BENCHMARKS=OFF
 cmake --build build-fuzz --parallel 2
-# A fixed seed and run count: the same inputs every time, so a CI run never fails by luck.
-for run in tool_model:40000 replay:400000 json:150000; do
+# A fixed seed and run count: the same inputs every time, so a CI run never fails by luck. Each
+# fuzzer uses one core: they run side by side, each with its own log, shown when it fails.
+fuzzing=""
+for run in json:150000 tool_model:40000 replay:400000; do
   target=${run%%:*}
   # The shipped corpus is the seed; new finds go to a scratch copy, never into the tree.
   rm -rf "build-fuzz/corpus-$target" && cp -r "fuzz/corpus/$target" "build-fuzz/corpus-$target"
   "./build-fuzz/fuzz/fuzz_$target" -seed=1 -runs="${run#*:}" -artifact_prefix="build-fuzz/$target-" \
-    "build-fuzz/corpus-$target"
+    "build-fuzz/corpus-$target" > "build-fuzz/$target.log" 2>&1 &
+  fuzzing="$fuzzing $target:$!"
+done
+for job in $fuzzing; do
+  if wait "${job#*:}"; then
+    tail -n 1 "build-fuzz/${job%%:*}.log"
+  else
+    cat "build-fuzz/${job%%:*}.log"
+    echo "test.sh: fuzz_${job%%:*} failed" >&2
+    exit 1
+  fi
 done
 
 # The Falcon backend too, against the shared libnifalcon source when it is at hand.
