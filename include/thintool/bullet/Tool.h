@@ -44,6 +44,8 @@ struct LastWordDiagnostics {
   /// switched off: nothing then stops Bullet's solver from leaving nodes inside the tool.
   bool ran = false;
   SeparationCounts counts;  ///< moves made, and violations left (counts.nodesInside, counts.facesPierced)
+  /// The stage's time in the step (µs): this tool's passes of the last word, and its share of the
+  /// energy guard's (the guard's time, split evenly among the tools that have it on).
   double microseconds = 0;
   /// The energy guard (EnergyGuardSettings), over the soft bodies near the tool: nodes it slowed
   /// to the speed bound, and kinetic energy it took out to meet the energy bound (J).
