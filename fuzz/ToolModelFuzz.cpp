@@ -69,11 +69,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* bytes, size_t size) {
   }
   ToolModelSettings settings;
   settings.sampling.layout = static_cast<SamplingLayout>(data.ConsumeIntegralInRange<int>(0, 2));
-  settings.sampling.spacing = data.ConsumeBool() ? 0 : anyReal(data);
+  settings.sampling.spacing = data.ConsumeBool() ? std::nullopt : std::optional<Real>(anyReal(data));
   settings.sampling.maxNodes = data.ConsumeIntegralInRange<Index>(0, 5000);
   settings.association.enabled = data.ConsumeBool();
-  settings.association.maxRayLength = data.ConsumeBool() ? 0 : anyReal(data);
-  settings.probeDepth = data.ConsumeBool() ? 0 : anyReal(data);
+  settings.association.maxRayLength = data.ConsumeBool() ? std::nullopt : std::optional<Real>(anyReal(data));
+  settings.probeDepth = data.ConsumeBool() ? std::nullopt : std::optional<Real>(anyReal(data));
   try {
     check(buildToolModel(mesh, settings));
   } catch (const Error&) {

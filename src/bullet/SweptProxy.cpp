@@ -51,7 +51,7 @@ void SweptProxy::Shape::getAabb(const btTransform& /*transform*/, btVector3& out
     }
   }
   // The skin, when the tool fixes it; a soft body's own margin is already in its box.
-  const Real skin = m_tool.options().skin > 0 ? m_tool.options().skin : 0;
+  const Real skin = m_tool.options().skin.value_or(0);
   outMin = toBt(box.min - Vec3{skin, skin, skin});
   outMax = toBt(box.max + Vec3{skin, skin, skin});
 }

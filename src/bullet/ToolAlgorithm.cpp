@@ -343,7 +343,7 @@ void ToolAlgorithm::gather(PieceStep& step) {
   const ToolOptions& options = m_tool.m_options;
   PairState& state = step.state;
   btSoftBody& softBody = step.softBody;
-  step.fullSkin = options.skin >= 0 ? options.skin : Real(softBody.getCollisionShape()->getMargin());
+  step.fullSkin = options.skin.value_or(Real(softBody.getCollisionShape()->getMargin()));
   Aabb reach = transformedBounds(step.model.bounds, step.pose);
   if (step.swept) {
     reach.include(transformedBounds(step.model.bounds, step.previousPose));
@@ -378,9 +378,8 @@ void ToolAlgorithm::detect(PieceStep& step) {
     DetectionParameters parameters;
     parameters.skin = step.skin;
     parameters.filters = m_tool.m_options.filters;
-    if (parameters.filters.reverseRayLength <= 0) {
-      parameters.filters.reverseRayLength = length(toVec3(step.softBody.m_bounds[1] - step.softBody.m_bounds[0]));
-    }
+    parameters.reverseRayLength = parameters.filters.reverseRayLength.value_or(
+        length(toVec3(step.softBody.m_bounds[1] - step.softBody.m_bounds[0])));
     const SoftBodyRayQuery reverseQuery(step.softBody, state.traversalStack);
     detectContacts(step.model, step.pose, state.patch, &reverseQuery, parameters, state.history,
                    m_tool.m_detectionWorkspace, state.contacts, state.counters);

@@ -11,22 +11,27 @@ namespace {
 
 bool isLength(Real value) { return std::isfinite(value) && value >= 0; }
 
+// A length the user gave, when it must be positive: left empty, the library picks it.
+bool badPositiveLength(const std::optional<Real>& length) {
+  return length.has_value() && !(std::isfinite(*length) && *length > 0);
+}
+
 }  // namespace
 
 std::string validateToolOptions(const ToolOptions& options) {
   std::ostringstream problem;
-  if (!std::isfinite(options.skin)) {
-    problem << "skin must be finite (negative picks the soft body's margin), got " << options.skin;
+  if (options.skin.has_value() && !isLength(*options.skin)) {
+    problem << "skin must be a finite length >= 0 (empty: the soft body's margin), got " << *options.skin;
   } else if (!(options.skinGrowthSpeed > 0)) {
     problem << "skinGrowthSpeed must be > 0 m/s (infinite: at once), got " << options.skinGrowthSpeed;
-  } else if (!isLength(options.probeDepth)) {
-    problem << "probeDepth must be a finite length >= 0 (0 = automatic), got " << options.probeDepth;
+  } else if (badPositiveLength(options.probeDepth)) {
+    problem << "probeDepth must be a finite length > 0 (empty: automatic), got " << *options.probeDepth;
   } else if (options.filters.check1 && !options.association.enabled) {
     problem << "filters.check1 needs association.enabled; turn both off for the rays-only ablation "
                "(ToolOptions::rayOnly())";
-  } else if (!isLength(options.filters.reverseRayLength)) {
-    problem << "filters.reverseRayLength must be a finite length >= 0 (0 = automatic), got "
-            << options.filters.reverseRayLength;
+  } else if (badPositiveLength(options.filters.reverseRayLength)) {
+    problem << "filters.reverseRayLength must be a finite length > 0 (empty: automatic), got "
+            << *options.filters.reverseRayLength;
   } else if (!(std::isfinite(options.response.stiffness) && options.response.stiffness > 0)) {
     problem << "response.stiffness must be a finite stiffness > 0 N/m, got " << options.response.stiffness;
   } else if (options.response.friction.enabled &&

@@ -157,7 +157,7 @@ void detectContacts(const ToolModel& model, const Pose& toolPose, const SoftPatc
       }
       if (useReverseRay) {
         const Vec3 from = toolPose.apply(model.positions[node]);
-        const Vec3 delta = toolPose.applyToDirection(normal) * parameters.filters.reverseRayLength;
+        const Vec3 delta = toolPose.applyToDirection(normal) * parameters.reverseRayLength;
         if (!reverseQuery->anyHit(from, delta)) {
           ++outCounters.excludedByCheck2;
           work.m_excluded[1].push_back(node);

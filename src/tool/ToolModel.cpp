@@ -300,15 +300,19 @@ void associate(ToolModel& model, Real maxLength) {
 
 void checkSettings(const ToolModelSettings& settings) {
   std::ostringstream problem;
-  if (!(settings.sampling.spacing >= 0) || !std::isfinite(settings.sampling.spacing)) {
-    problem << "sampling.spacing must be a finite length >= 0 (0 = automatic), got " << settings.sampling.spacing;
+  // A length the user gave: finite and positive. Left empty, the model picks it.
+  const auto badLength = [](const std::optional<Real>& length) {
+    return length.has_value() && !(std::isfinite(*length) && *length > 0);
+  };
+  if (badLength(settings.sampling.spacing)) {
+    problem << "sampling.spacing must be a finite length > 0 (empty: automatic), got " << *settings.sampling.spacing;
   } else if (settings.sampling.maxNodes == 0) {
     problem << "sampling.maxNodes must be at least 1";
-  } else if (!(settings.association.maxRayLength >= 0) || !std::isfinite(settings.association.maxRayLength)) {
-    problem << "association.maxRayLength must be a finite length >= 0 (0 = automatic), got "
-            << settings.association.maxRayLength;
-  } else if (!(settings.probeDepth >= 0) || !std::isfinite(settings.probeDepth)) {
-    problem << "probeDepth must be a finite length >= 0 (0 = automatic), got " << settings.probeDepth;
+  } else if (badLength(settings.association.maxRayLength)) {
+    problem << "association.maxRayLength must be a finite length > 0 (empty: automatic), got "
+            << *settings.association.maxRayLength;
+  } else if (badLength(settings.probeDepth)) {
+    problem << "probeDepth must be a finite length > 0 (empty: automatic), got " << *settings.probeDepth;
   }
   if (!problem.str().empty()) {
     throw Error(problem.str());
@@ -388,7 +392,7 @@ ToolModel buildToolModel(const ConvexMesh& mesh, const ToolModelSettings& settin
 
   const Vec3 extent = model.bounds.extent();
   const Real largestExtent = std::max({extent.x, extent.y, extent.z});
-  model.spacing = settings.sampling.spacing > 0 ? settings.sampling.spacing : largestExtent / kAutoSpacingDivisor;
+  model.spacing = settings.sampling.spacing.value_or(largestExtent / kAutoSpacingDivisor);
 
   if (settings.sampling.layout == SamplingLayout::BoxFaceGrid) {
     sampleBoxFaceGrid(model, settings.sampling, model.spacing);
@@ -398,7 +402,7 @@ ToolModel buildToolModel(const ConvexMesh& mesh, const ToolModelSettings& settin
     sampleFacePatches(model, settings.sampling, model.spacing);
   }
 
-  const Real probeDepth = settings.probeDepth > 0 ? settings.probeDepth : model.thickness;
+  const Real probeDepth = settings.probeDepth.value_or(model.thickness);
   model.probeLengths.resize(model.nodeCount());
   std::vector<Aabb> rayBoxes(model.nodeCount());
   for (Index i = 0; i < model.nodeCount(); ++i) {
@@ -413,8 +417,7 @@ ToolModel buildToolModel(const ConvexMesh& mesh, const ToolModelSettings& settin
   model.pointGrid.build(model.points);
 
   if (settings.association.enabled) {
-    const Real maxLength = settings.association.maxRayLength > 0 ? settings.association.maxRayLength
-                                                                  : kAutoAssociationFactor * model.thickness;
+    const Real maxLength = settings.association.maxRayLength.value_or(kAutoAssociationFactor * model.thickness);
     associate(model, maxLength);
   } else {
     model.partners.assign(model.nodeCount(), kInvalidIndex);

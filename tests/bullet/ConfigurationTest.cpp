@@ -153,6 +153,28 @@ TEST(Configuration, InvalidOptionsNameTheToolAndTheField) {
     EXPECT_NE(message.find("skinGrowthSpeed"), std::string::npos) << message;
   }
 
+  // Lengths left empty are the library's to pick; given, they must be lengths.
+  for (const Real skin : {Real(-0.01), Real(std::nan("")), Real(INFINITY)}) {
+    options = ToolOptions{};
+    options.skin = skin;
+    message = errorOf([&] { addTool(w.world, w.body, options); });
+    EXPECT_NE(message.find("skin"), std::string::npos) << message;
+  }
+  options = ToolOptions{};
+  options.probeDepth = 0;
+  message = errorOf([&] { addTool(w.world, w.body, options); });
+  EXPECT_NE(message.find("probeDepth"), std::string::npos) << message;
+  options = ToolOptions{};
+  options.filters.reverseRayLength = 0;
+  message = errorOf([&] { addTool(w.world, w.body, options); });
+  EXPECT_NE(message.find("filters.reverseRayLength"), std::string::npos) << message;
+  options = ToolOptions{};
+  options.skin = 0;  // no skin at all is a choice
+  options.probeDepth = 0.01;
+  options.filters.reverseRayLength = 2;
+  EXPECT_NO_THROW(addTool(w.world, w.body, options));
+  EXPECT_TRUE(removeTool(w.world, w.body));
+
   for (const Real factor : {Real(0.5), Real(std::nan("")), Real(INFINITY)}) {
     options = ToolOptions{};
     options.energyGuard.speedFactor = factor;

@@ -155,5 +155,39 @@ TEST(SweptCases, ReversedAndPulledOutWhileInsideEveryNodeStaysOnItsSide) {
   EXPECT_FALSE(m.everInside);
 }
 
+// The sheet under the plate, the plate pressing it down at 0.5 m/s: once it has pressed 0.1 m, the
+// gap the nodes under the middle of the plate keep from its underside, smallest and largest.
+std::array<btScalar, 2> gapUnderPressingPlate(const ToolOptions& options) {
+  SheetUnderPlate scene(0.5, 21, true, 0.1, options);
+  const btScalar dt = btScalar(1) / 120;
+  constexpr btScalar kStart = 1.1, kEnd = 0.9, kSpeed = 0.5;
+  btScalar y = kStart;
+  for (int step = 0; y > kEnd; ++step) {
+    y = kStart - kSpeed * dt * btScalar(step);
+    scene.motion.setWorldTransform(btTransform(btQuaternion::getIdentity(), btVector3(0, y, 0)));
+    scene.soft.world.stepSimulation(dt, 1, dt);
+  }
+  std::array<btScalar, 2> gap{BT_LARGE_FLOAT, -BT_LARGE_FLOAT};
+  for (int i = 0; i < scene.sheet->m_nodes.size(); ++i) {
+    const btVector3& x = scene.sheet->m_nodes[i].m_x;
+    if (std::abs(x.x()) > 0.06 || std::abs(x.z()) > 0.06) continue;
+    const btScalar below = (y - 0.01) - x.y();
+    gap[0] = btMin(gap[0], below);
+    gap[1] = btMax(gap[1], below);
+  }
+  return gap;
+}
+
+TEST(Skin, AGivenSkinIsKeptInPlaceOfTheSoftBodysMargin) {
+  const std::array<btScalar, 2> margin = gapUnderPressingPlate(ToolOptions{});  // the sheet's 0.01 m
+  ToolOptions thicker;
+  thicker.skin = 0.03;
+  const std::array<btScalar, 2> given = gapUnderPressingPlate(thicker);
+  EXPECT_NEAR(margin[0], 0.01, 0.004);
+  EXPECT_NEAR(margin[1], 0.01, 0.004);
+  EXPECT_NEAR(given[0], 0.03, 0.004);
+  EXPECT_NEAR(given[1], 0.03, 0.004);
+}
+
 }  // namespace
 }  // namespace thintool::scenes

@@ -42,7 +42,7 @@ class Fig4Sequence : public ::testing::Test {
     parameters.skin = kSkin;
     parameters.filters.check1 = check1;
     parameters.filters.check2 = check2;
-    parameters.filters.reverseRayLength = 3;
+    parameters.reverseRayLength = 3;
     std::vector<Contact> contacts;
     Step step;
     detectContacts(m_model, pose, m_patch, &m_query, parameters, m_history, m_workspace, contacts, step.counters);

@@ -150,6 +150,13 @@ TEST(ToolModel, InvalidInputIsAnErrorNotACrash) {
   ToolModelSettings negative;
   negative.sampling.spacing = -1;
   EXPECT_THROW(buildToolModel(makeBoxMesh({1, 1, 1}), negative), Error);
+  // Zero is a length the user gave, not a request for the automatic one.
+  ToolModelSettings zeroRay;
+  zeroRay.association.maxRayLength = 0;
+  EXPECT_THROW(buildToolModel(makeBoxMesh({1, 1, 1}), zeroRay), Error);
+  ToolModelSettings zeroProbe;
+  zeroProbe.probeDepth = 0;
+  EXPECT_THROW(buildToolModel(makeBoxMesh({1, 1, 1}), zeroProbe), Error);
   EXPECT_THROW(buildToolModel(ConvexMesh{}, {}), Error);
   try {
     buildToolModel(makeBoxMesh({1, 0, 1}), {});

@@ -12,6 +12,7 @@
 #include <thintool/response/Separation.h>
 #include <thintool/tool/ToolModel.h>
 
+#include <optional>
 #include <string>
 
 namespace thintool {
@@ -50,12 +51,13 @@ struct ToolOptions {
 
   SamplingSettings sampling;
   AssociationSettings association;
-  /// Deepest a soft face is looked for below a tool node (m, >= 0); 0 picks the tool's thickness.
-  Real probeDepth = 0;
-  /// Contact margin kept between the tool's faces and the soft surface (m). Negative uses each
+  /// Deepest a soft face is looked for below a tool node (m, > 0); empty picks each piece's
+  /// thickness.
+  std::optional<Real> probeDepth;
+  /// Contact margin kept between the tool's faces and the soft surface (m, >= 0). Empty uses each
   /// soft body's own collision margin (btSoftBody::getCollisionShape()->getMargin()), as Bullet's
   /// stock soft–rigid contact does.
-  Real skin = -1;
+  std::optional<Real> skin;
   /// How fast (m/s) a pair that begins with soft nodes already inside the skin (a body created
   /// within the tool's margin, a tool registered or set down onto tissue) grows its skin from the
   /// closest node's distance to the full skin. Pushed out to the full skin in one step, those nodes

@@ -27,6 +27,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace thintool {
@@ -39,14 +40,15 @@ struct FilterSettings {
   bool check2 = true;
   /// Check 2 also casts the reverse ray (a long ray; the orientation test alone is cheap).
   bool reverseRay = true;
-  /// Length of the reverse ray (m, >= 0); 0 uses the soft body's bounding-box diagonal.
-  Real reverseRayLength = 0;
+  /// Length of the reverse ray (m, > 0); empty uses the soft body's bounding-box diagonal.
+  std::optional<Real> reverseRayLength;
 };
 
 /// Per-step parameters, resolved by the glue for one soft body.
 struct DetectionParameters {
-  Real skin = 0;          ///< contact margin in front of the tool's faces (m, >= 0)
-  FilterSettings filters; ///< with reverseRayLength resolved to a length > 0
+  Real skin = 0;              ///< contact margin in front of the tool's faces (m, >= 0)
+  FilterSettings filters;
+  Real reverseRayLength = 0;  ///< filters.reverseRayLength, or the glue's choice when it is empty (m, > 0)
 };
 
 /// What met what.

@@ -31,6 +31,7 @@
 #include <thintool/geometry/PointGrid.h>
 
 #include <array>
+#include <optional>
 #include <vector>
 
 namespace thintool {
@@ -43,10 +44,10 @@ enum class SamplingLayout {
 
 struct SamplingSettings {
   SamplingLayout layout = SamplingLayout::FacePatches;
-  /// Cell size of the sampling grid (m, >= 0). 0 picks 1/8 of the piece's largest extent: 0.1 m
-  /// for the paper's 0.8 m plate, 160 nodes. Every soft face whose inscribed circle has a radius of
-  /// at least spacing/√2 contains a node's ray; smaller faces can slip between the rays.
-  Real spacing = 0;
+  /// Cell size of the sampling grid (m, > 0). Empty picks 1/8 of the piece's largest extent:
+  /// 0.1 m for the paper's 0.8 m plate, 160 nodes. Every soft face whose inscribed circle has a
+  /// radius of at least spacing/√2 contains a node's ray; smaller faces can slip between the rays.
+  std::optional<Real> spacing;
   /// Registration fails rather than build more nodes than this (a spacing typed in the wrong unit).
   Index maxNodes = 50000;
 };
@@ -54,16 +55,16 @@ struct SamplingSettings {
 struct AssociationSettings {
   /// Pair nodes across the piece. Check 1 needs it; off, no pairs are built and check 1 is off.
   bool enabled = true;
-  /// Longest association ray (m, >= 0). 0 picks 1.5 × the piece's thickness, which pairs the
+  /// Longest association ray (m, > 0). Empty picks 1.5 × the piece's thickness, which pairs the
   /// faces across a thin direction and leaves nodes on the narrow sides unpaired (paper Fig. 6).
-  Real maxRayLength = 0;
+  std::optional<Real> maxRayLength;
 };
 
 struct ToolModelSettings {
   SamplingSettings sampling;
   AssociationSettings association;
-  /// Deepest a soft face is looked for below a node (m, >= 0); 0 picks the piece's thickness.
-  Real probeDepth = 0;
+  /// Deepest a soft face is looked for below a node (m, > 0); empty picks the piece's thickness.
+  std::optional<Real> probeDepth;
 };
 
 /// Sample nodes of one convex piece, in the piece's frame. Immutable once built.
