@@ -180,11 +180,14 @@ void SoftBodySolver::measureEnergy(btScalar timeStep) {
     if (!guarded) continue;
     // Each node's motion as Bullet set it up for the solve, (x - q)/dt: its forces, gravity and
     // pose matching; the fastest node is read from the velocity Bullet predicted, in the same pass.
+    // A square root for the fastest only: the root of the largest square is the largest root.
     const btScalar inverseStepBt = softBody.m_sst.isdt;
+    btScalar fastestSquared = 0;
     BodyMotion motion = motionOf(softBody, [&](const btSoftBody::Node& node) {
-      energy.fastest = std::max(energy.fastest, double(node.m_v.length()));
+      fastestSquared = std::max(fastestSquared, node.m_v.length2());
       return (node.m_x - node.m_q) * inverseStepBt;
     });
+    energy.fastest = std::max(energy.fastest, double(btSqrt(fastestSquared)));
     // The response's moves are not the body's own motion: what they add is taken back out.
     for (Tool* tool : m_configuration.tools()) {
       if (!tool->m_options.energyGuard.enabled) continue;
@@ -214,11 +217,12 @@ void SoftBodySolver::guardEnergy() {
     btSoftBody& softBody = *m_softBodySet[s];
     // The energy about the centre of mass, as the solve left it: the body's motion as a whole is
     // the tool's push or its fall, which the bound must not damp.
-    double fastest = 0;
-    const BodyMotion motion = motionOf(softBody, [&fastest](const btSoftBody::Node& node) {
-      fastest = std::max(fastest, double(node.m_v.length()));
+    btScalar fastestSquared = 0;
+    const BodyMotion motion = motionOf(softBody, [&fastestSquared](const btSoftBody::Node& node) {
+      fastestSquared = std::max(fastestSquared, node.m_v.length2());
       return node.m_v;
     });
+    const double fastest = double(btSqrt(fastestSquared));
     if (!(motion.mass > 0)) continue;
     const btVector3 mean = motion.momentum / btScalar(motion.mass);
     const double internal = motion.kinetic - 0.5 * motion.mass * double(mean.length2());
