@@ -391,7 +391,8 @@ PressResult runPress(const PressSettings& settings) {
   for (int i = 1; i <= moveSteps + holdSteps; ++i) {
     const double height = std::max(targetHeight, startHeight - settings.speed * dt * std::min(i, moveSteps));
     pose.setOrigin(scene.aboveBall(height));
-    wallMicroseconds += scene.step(pose);
+    result.stepMicroseconds.push_back(scene.step(pose));
+    wallMicroseconds += result.stepMicroseconds.back();
     tracker.update(scene.toolBox(), nodePositions(scene.ball()), faces);
     if (thintool::Tool* tool = scene.tool()) {
       const thintool::ToolStepReport& report = tool->report();

@@ -132,7 +132,8 @@ struct PressResult {
   RunMetrics metrics;
   int steps = 0;                        ///< steps while moving and holding
   double microsecondsPerStep = 0;       ///< mean stepSimulation wall time over those steps
-  double toolMicrosecondsPerStep = 0;   ///< ThinTool's own share (detection and response)
+  double toolMicrosecondsPerStep = 0;   ///< ThinTool's own share (detection, response, last word)
+  std::vector<double> stepMicroseconds;  ///< each of those steps' stepSimulation wall time
   int maxContacts = 0;                  ///< ThinTool contacts in one step
   long excludedByCheck1 = 0;            ///< summed over the steps
   long excludedByCheck2 = 0;
