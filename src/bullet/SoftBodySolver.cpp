@@ -100,10 +100,14 @@ void SoftBodySolver::solveConstraints(btScalar timeStep) {
   ++m_step;
   std::vector<Tool*>& tools = m_active;
   tools.clear();
+  m_dynamicToolsActive = false;
   for (Tool* tool : m_configuration.tools()) {
     tool->m_lastWord = LastWordDiagnostics{};
     if (tool->m_options.separation.enabled && isFinite(toPose(tool->body().getWorldTransform()))) {
       tools.push_back(tool);
+      const ForceSettings& force = tool->m_options.force;
+      m_dynamicToolsActive = m_dynamicToolsActive ||
+                             (tool->dynamicBody() != nullptr && !(force.enabled && force.applyToDynamicTool));
     }
   }
   // One piece's moves can push soft features into another (two jaws, two tools): the pieces take
@@ -342,8 +346,10 @@ void SoftBodySolver::surveyNodes(SoftBodyCache& cache, const btSoftBody& softBod
   bool finite = true;
   btVector3 lowest(BT_LARGE_FLOAT, BT_LARGE_FLOAT, BT_LARGE_FLOAT);
   btVector3 highest = -lowest;
+  cache.pinned.clear();
   for (int i = 0; i < softBody.m_nodes.size(); ++i) {
     const btSoftBody::Node& node = softBody.m_nodes[i];
+    if (m_dynamicToolsActive && !(node.m_im > 0)) cache.pinned.push_back(static_cast<Index>(i));
     const btScalar moved = (node.m_x - node.m_q).length2();
     farthest = btMax(farthest, moved);
     finite = finite && std::isfinite(moved);
@@ -377,11 +383,12 @@ void SoftBodySolver::surveyNodes(SoftBodyCache& cache, const btSoftBody& softBod
 }
 
 void SoftBodySolver::stopAtPinnedNodes(btRigidBody& tool, const ToolModel& piece, const Pose& pieceEnd,
-                                       Real inverseStep) {
-  for (Index v = 0; v < m_patch.vertexCount(); ++v) {
-    if (m_patch.inverseMasses[v] > 0) continue;
+                                       Real inverseStep, const SoftBodyCache& cache, const btSoftBody& softBody) {
+  for (const Index id : cache.pinned) {
+    if (id >= static_cast<Index>(softBody.m_nodes.size())) continue;
+    const Vec3 at = toVec3(softBody.m_nodes[static_cast<int>(id)].m_x);
     Index plane = 0;
-    const Real separation = outsideDistance(piece.planes, pieceEnd.applyInverse(m_patch.positions[v]), &plane);
+    const Real separation = outsideDistance(piece.planes, pieceEnd.applyInverse(at), &plane);
     // The node cannot give way, so the tool does. A speculative contact, as Box2D's: the tool's
     // point there may close on the node by the gap along the nearest face's normal in the next
     // step, and no more; inside, it leaves fast enough to be out at the end of the next step, as a
@@ -389,7 +396,7 @@ void SoftBodySolver::stopAtPinnedNodes(btRigidBody& tool, const ToolModel& piece
     // limit is conservative past an edge.
     const btVector3 outward = toBt(pieceEnd.applyToDirection(piece.planes[plane].normal));
     const btVector3 closeAtMost = outward * btScalar(separation * inverseStep);
-    detail::applyNodeReaction(tool, toBt(m_patch.positions[v]), outward, 0, btScalar(inverseStep), closeAtMost);
+    detail::applyNodeReaction(tool, toBt(at), outward, 0, btScalar(inverseStep), closeAtMost);
   }
 }
 
@@ -419,7 +426,17 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
   const Aabb grown = swept.expanded(cache.faceReach);
   m_patch.clear();
   m_nearNodes.clear();
-  if (cache.boundsHold && !grown.overlaps(cache.bounds)) return {};
+  // A dynamic tool takes the moved nodes' reaction, unless the force model is what reacts on it
+  // (ForceSettings::applyToDynamicTool), as for the collision stage's own moves; and the body's
+  // pinned nodes stop it, near this step's reach or not: a fast tool reaches next step what it
+  // does not reach in this one.
+  const Real inverseStep = Real(softBody.m_sst.isdt);
+  const ForceSettings& force = tool.m_options.force;
+  btRigidBody* dynamicTool = force.enabled && force.applyToDynamicTool ? nullptr : tool.dynamicBody();
+  if (cache.boundsHold && !grown.overlaps(cache.bounds)) {
+    if (dynamicTool != nullptr) stopAtPinnedNodes(*dynamicTool, piece, motion.end(), inverseStep, cache, softBody);
+    return {};
+  }
   const btSoftBody::Node* first = nodeCount > 0 ? &softBody.m_nodes[0] : nullptr;
   const auto vertexOf = [&](const btSoftBody::Node& node) {
     const auto id = static_cast<Index>(&node - first);
@@ -470,6 +487,7 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
   }
   if (m_patch.vertexCount() == 0) {
     for (Index f : m_patchFaces) m_faceInPatch[f] = 0;
+    if (dynamicTool != nullptr) stopAtPinnedNodes(*dynamicTool, piece, motion.end(), inverseStep, cache, softBody);
     return {};
   }
   ++m_piecesNear;
@@ -504,11 +522,6 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
   // tool's own there, whichever separates faster: a contact without bounce. Taking the move itself
   // as velocity, as Bullet's position solve would, turns every correction of the solver's overlap
   // into a kick away from the tool.
-  const Real inverseStep = Real(softBody.m_sst.isdt);
-  // A dynamic tool takes the moved nodes' reaction, unless the force model is what reacts on it
-  // (ForceSettings::applyToDynamicTool), as for the collision stage's own moves.
-  const ForceSettings& force = tool.m_options.force;
-  btRigidBody* dynamicTool = force.enabled && force.applyToDynamicTool ? nullptr : tool.dynamicBody();
   if (dynamicTool != nullptr) findBackings(softBody);
   bool movedAny = false;
   for (Index v = 0; v < m_patch.vertexCount(); ++v) {
@@ -538,7 +551,7 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
     }
   }
   if (dynamicTool != nullptr) {
-    stopAtPinnedNodes(*dynamicTool, piece, motion.end(), inverseStep);
+    stopAtPinnedNodes(*dynamicTool, piece, motion.end(), inverseStep, cache, softBody);
     for (int c = 0; c < softBody.m_rcontacts.size(); ++c) {
       m_backingOfNode[static_cast<Index>(softBody.m_rcontacts[c].m_node - &softBody.m_nodes[0])] = -1;
     }

@@ -91,12 +91,15 @@ class SoftBodySolver : public btDefaultSoftBodySolver {
     // Every node at the start and the end of this step, when boundsHold (all of them finite).
     Aabb bounds;
     bool boundsHold = false;
+    // The pinned nodes (zero inverse mass), listed in steps where a dynamic tool takes reactions.
+    std::vector<Index> pinned;
   };
   SoftBodyCache& cacheOf(const btSoftBody& softBody);
   // Once a step: the face reach, and the box of the body's nodes.
   void surveyNodes(SoftBodyCache& cache, const btSoftBody& softBody);
-  // The pinned nodes of the patch stop the dynamic tool that carries the piece short of them.
-  void stopAtPinnedNodes(btRigidBody& tool, const ToolModel& piece, const Pose& pieceEnd, Real inverseStep);
+  // The soft body's pinned nodes stop the dynamic tool that carries the piece short of them.
+  void stopAtPinnedNodes(btRigidBody& tool, const ToolModel& piece, const Pose& pieceEnd, Real inverseStep,
+                         const SoftBodyCache& cache, const btSoftBody& softBody);
   // Fills m_backingOfNode from the soft body's contacts of this step.
   void findBackings(const btSoftBody& softBody);
 
@@ -120,6 +123,7 @@ class SoftBodySolver : public btDefaultSoftBodySolver {
   // none; filled only while a dynamic tool takes the reaction of moved nodes
   std::vector<int> m_backingOfNode;
   int m_step = 0;
+  bool m_dynamicToolsActive = false;  // a tool of this step's last word is dynamic and takes reactions
 };
 
 }  // namespace thintool
