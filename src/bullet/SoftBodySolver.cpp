@@ -78,6 +78,14 @@ BodyMotion motionOf(const btSoftBody& softBody, VelocityOf velocityOf) {
   return motion;
 }
 
+// The dynamic tool that takes the last word's reactions, or nullptr: none when the tool is not
+// dynamic, or when its force model is what reacts on it (ForceSettings::applyToDynamicTool), as for
+// the collision stage's own moves.
+btRigidBody* reactingBody(const Tool& tool) {
+  const ForceSettings& force = tool.options().force;
+  return force.enabled && force.applyToDynamicTool ? nullptr : tool.dynamicBody();
+}
+
 // The free node a correction of the pair moved, or nullptr (pinned, or no longer in the body).
 const btSoftBody::Node* movedNode(const btSoftBody& softBody, const detail::PairState& pair,
                                   const NodeCorrection& correction) {
@@ -105,9 +113,7 @@ void SoftBodySolver::solveConstraints(btScalar timeStep) {
     tool->m_lastWord = LastWordDiagnostics{};
     if (tool->m_options.separation.enabled && isFinite(toPose(tool->body().getWorldTransform()))) {
       tools.push_back(tool);
-      const ForceSettings& force = tool->m_options.force;
-      m_dynamicToolsActive = m_dynamicToolsActive ||
-                             (tool->dynamicBody() != nullptr && !(force.enabled && force.applyToDynamicTool));
+      m_dynamicToolsActive = m_dynamicToolsActive || reactingBody(*tool) != nullptr;
     }
   }
   // One piece's moves can push soft features into another (two jaws, two tools): the pieces take
@@ -426,13 +432,10 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
   const Aabb grown = swept.expanded(cache.faceReach);
   m_patch.clear();
   m_nearNodes.clear();
-  // A dynamic tool takes the moved nodes' reaction, unless the force model is what reacts on it
-  // (ForceSettings::applyToDynamicTool), as for the collision stage's own moves; and the body's
-  // pinned nodes stop it, near this step's reach or not: a fast tool reaches next step what it
-  // does not reach in this one.
+  // A dynamic tool takes the moved nodes' reaction, and the body's pinned nodes stop it, near this
+  // step's reach or not: a fast tool reaches next step what it does not reach in this one.
   const Real inverseStep = Real(softBody.m_sst.isdt);
-  const ForceSettings& force = tool.m_options.force;
-  btRigidBody* dynamicTool = force.enabled && force.applyToDynamicTool ? nullptr : tool.dynamicBody();
+  btRigidBody* dynamicTool = reactingBody(tool);
   if (cache.boundsHold && !grown.overlaps(cache.bounds)) {
     if (dynamicTool != nullptr) stopAtPinnedNodes(*dynamicTool, piece, motion.end(), inverseStep, cache, softBody);
     return {};
