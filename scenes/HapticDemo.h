@@ -42,6 +42,20 @@ struct HapticSample {
   int contacts = 0;
 };
 
+/// A stretch in which the device stood still with the tool in the tissue, and how steady the force
+/// the hand felt was over it, from settle seconds after it began (the tissue's own transient).
+struct HapticHold {
+  double from = 0, to = 0;     ///< s, the stretch measured (after settling)
+  double meanForce = 0;        ///< N, mean |device force|
+  double peakToPeak = 0;       ///< N, largest less smallest |device force|
+  double variation() const { return meanForce > 0 ? peakToPeak / meanForce : 0; }
+};
+
+/// The holds of a trace: the device point moved less than 1 µm (world) from one sample to the next
+/// for at least settle + minimum seconds, and the tissue pushed the tool in at least a tenth of the
+/// samples measured.
+std::vector<HapticHold> findHolds(const std::vector<HapticSample>& trace, double settle = 0.2, double minimum = 0.1);
+
 struct HapticDemoResult {
   std::vector<HapticSample> trace;
   haptics::LoopStatistics loop;

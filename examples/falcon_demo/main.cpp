@@ -6,7 +6,10 @@
 // Without a Falcon it replays a recorded trajectory, headless, and writes the force trace (CSV)
 // and its plot (PNG).
 //
-//   falcon_demo [--trajectory FILE] [--fast] [--out DIR] [--falcon FIRMWARE.bin]
+//   falcon_demo [--trajectory FILE] [--fast] [--out DIR] [--falcon FIRMWARE.bin] [--no-response]
+//
+// --no-response leaves the nodes where Bullet puts them (ResponseKind::None): the force alone,
+// to compare how steady it is with and without the response.
 
 #include "HapticDemo.h"
 #include "Plot.h"
@@ -58,7 +61,7 @@ std::string plotScript(const std::string& csv, const std::string& png) {
 }
 
 int usage() {
-  std::cerr << "usage: falcon_demo [--trajectory FILE] [--fast] [--out DIR] [--falcon FIRMWARE.bin]\n";
+  std::cerr << "usage: falcon_demo [--trajectory FILE] [--fast] [--out DIR] [--falcon FIRMWARE.bin] [--no-response]\n";
   return 2;
 }
 
@@ -69,6 +72,7 @@ int main(int argc, char** argv) {
   std::string outDir = ".";
   std::string firmware;
   bool fast = false;
+  bool noResponse = false;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--trajectory" && i + 1 < argc) {
@@ -79,6 +83,8 @@ int main(int argc, char** argv) {
       firmware = argv[++i];
     } else if (arg == "--fast") {
       fast = true;
+    } else if (arg == "--no-response") {
+      noResponse = true;
     } else {
       return usage();
     }
@@ -86,6 +92,9 @@ int main(int argc, char** argv) {
 
   scenes::HapticDemoSettings settings;
   settings.realTime = !fast;
+  if (noResponse) {
+    settings.toolOptions.response.kind = ResponseKind::None;
+  }
   std::unique_ptr<haptics::Device> device;
   try {
     if (!firmware.empty()) {
@@ -131,6 +140,11 @@ int main(int argc, char** argv) {
   std::printf("peak device force %.2f N, peak tissue force on the spatula %.3f N; crossed nodes %d, tool ever inside "
               "the ball: %s\n",
               peakDevice, peakTissue, result.metrics.crossed, result.metrics.everInside ? "yes" : "no");
+  // Held still in the tissue, the force the hand feels should be steady: its spread over each hold.
+  for (const scenes::HapticHold& hold : scenes::findHolds(result.trace)) {
+    std::printf("held in the tissue %.2f-%.2f s: device force %.3f N, peak to peak %.3f N (%.1f %%)\n", hold.from,
+                hold.to, hold.meanForce, hold.peakToPeak, 100 * hold.variation());
+  }
   std::string whyNot;
   if (examples::runGnuplot(outDir + "/falcon_demo_force.gp", plotScript(csv, png), whyNot)) {
     std::printf("wrote %s and %s\n", csv.c_str(), png.c_str());

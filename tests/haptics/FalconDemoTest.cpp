@@ -10,6 +10,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <vector>
+
 namespace thintool::scenes {
 namespace {
 
@@ -60,6 +63,49 @@ TEST(FalconDemo, ShippedTrajectoryFeelsTheTissueAndNeverPassesThrough) {
   EXPECT_GT(holdDevice, 0.3);
   EXPECT_GT(holdTissue, 0);
   EXPECT_NEAR(holdDevice, scale * holdTissue, 0.4 * holdDevice);
+
+  // The trajectory holds the device still in the tissue from 2.5 s to 3 s, once.
+  const std::vector<HapticHold> holds = findHolds(result.trace);
+  ASSERT_EQ(holds.size(), 1u);
+  EXPECT_NEAR(holds[0].from, 2.7, 0.05);
+  EXPECT_NEAR(holds[0].to, 3.0, 0.05);
+  EXPECT_GT(holds[0].meanForce, 0.3);
+  EXPECT_TRUE(std::isfinite(holds[0].peakToPeak) && holds[0].peakToPeak >= 0);
+}
+
+// A trace: still at the origin with the given device forces, one sample a millisecond.
+std::vector<HapticSample> stillTrace(const std::vector<double>& forces, double contact) {
+  std::vector<HapticSample> trace;
+  for (std::size_t i = 0; i < forces.size(); ++i) {
+    HapticSample s;
+    s.time = 0.001 * double(i);
+    s.deviceForce = {0, forces[i], 0};
+    s.contactForce = {0, contact, 0};
+    trace.push_back(s);
+  }
+  return trace;
+}
+
+TEST(FalconDemo, AHoldsSpreadIsMeasuredAfterItSettles) {
+  // 400 ms still: a transient of 5 N for the first 200 ms, then 1.0 and 1.1 N by turns.
+  std::vector<double> forces(400);
+  for (std::size_t i = 0; i < forces.size(); ++i) forces[i] = i < 200 ? 5 : (i % 2 == 0 ? 1.0 : 1.1);
+  const std::vector<HapticHold> holds = findHolds(stillTrace(forces, 0.1));
+  ASSERT_EQ(holds.size(), 1u);
+  EXPECT_NEAR(holds[0].from, 0.2, 1e-9);
+  EXPECT_NEAR(holds[0].to, 0.399, 1e-9);
+  EXPECT_NEAR(holds[0].meanForce, 1.05, 1e-9);
+  EXPECT_NEAR(holds[0].peakToPeak, 0.1, 1e-9);
+  EXPECT_NEAR(holds[0].variation(), 0.1 / 1.05, 1e-9);
+}
+
+TEST(FalconDemo, NoHoldWhileTheDeviceMovesOrTheToolTouchesNothing) {
+  const std::vector<double> forces(400, 1.0);
+  EXPECT_TRUE(findHolds(stillTrace(forces, 0)).empty()) << "still, but in the air";
+  std::vector<HapticSample> moving = stillTrace(forces, 0.1);
+  for (HapticSample& s : moving) s.device.y = -0.01 * s.time;  // 1 cm/s: 10 um a sample
+  EXPECT_TRUE(findHolds(moving).empty());
+  EXPECT_TRUE(findHolds(stillTrace(std::vector<double>(250, 1.0), 0.1)).empty()) << "shorter than settle + 0.1 s";
 }
 
 }  // namespace
