@@ -21,6 +21,10 @@ struct btDbvtNode;
 
 namespace thintool::detail {
 
+/// The bodies a pair's holds refer to carry this address as their user pointer, which no body of
+/// the user's can: the soft solver tells the holds from Bullet's own contacts by it.
+inline constexpr char kHoldBodyMark = 0;
+
 /// Why a tool's pair with a soft body is left to Bullet's stock handler (ToolDiagnostics::stockPairs).
 enum class StockReason : std::uint8_t { None, DeformableWorld, ClusterCollision, NoRigidContact, NoFaces };
 
@@ -68,6 +72,10 @@ struct PairState {
   std::vector<Vec3> anchorPositions;
   /// Bodies that the solver contacts holding moved nodes refer to, one per node (see ToolAlgorithm).
   std::vector<std::unique_ptr<btRigidBody>> holdBodies;
+  /// This step's holds: the soft body's m_rcontacts from firstHold on, holdCount of them, the k-th
+  /// referring to holdBodies[k] (the soft solver checks that before it reads them).
+  int firstHold = 0;
+  int holdCount = 0;
 
   // Results of the latest step.
   std::vector<Contact> contacts;
@@ -90,6 +98,7 @@ struct PairState {
     excludedNodes[0].clear();
     excludedNodes[1].clear();
     faceForces.clear();
+    holdCount = 0;
     counters = DetectionCounters{};
     wrench = Wrench{};
     detectionMicroseconds = 0;

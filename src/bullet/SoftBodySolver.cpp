@@ -13,6 +13,7 @@
 
 #include <BulletDynamics/Dynamics/btRigidBody.h>
 #include <BulletSoftBody/btSoftBody.h>
+#include <BulletSoftBody/btSoftBodyInternals.h>
 
 #include <algorithm>
 #include <chrono>
@@ -36,6 +37,17 @@ void reactOnTool(btRigidBody& tool, const btSoftBody& softBody, const btSoftBody
       backingBody != nullptr ? backingBody->getVelocityInLocalPoint(node.m_x - backingBody->getCenterOfMassPosition())
                              : btVector3(0, 0, 0);
   detail::applyNodeReaction(tool, node.m_x, displacement, 0, softBody.m_sst.isdt, backingVelocity);
+}
+
+// Adds to a tool's hold wrench (torque about the world's origin) the force of a hold that undid
+// moveUndone of the node's motion in a contact stage: the hold's impulse is m·moveUndone/dt, the
+// force over the step that impulse over dt.
+void addHoldForce(Wrench& wrench, const btSoftBody::Node& node, const btVector3& moveUndone, double inverseStepSquared) {
+  if (!(node.m_im > 0)) return;
+  const Vec3 force = toVec3(moveUndone) * (inverseStepSquared / double(node.m_im));
+  if (!isFinite(force)) return;
+  wrench.force += force;
+  wrench.torque += cross(toVec3(node.m_x), force);
 }
 
 // Everything the piece can reach during the step: its boxes at the arc's samples, grown by how far
@@ -99,12 +111,185 @@ const btSoftBody::Node* movedNode(const btSoftBody& softBody, const detail::Pair
 
 SoftBodySolver::SoftBodySolver(CollisionConfiguration& configuration) : m_configuration(configuration) {}
 
+void SoftBodySolver::solveSoftBodies() {
+  // As btDefaultSoftBodySolver::solveConstraints: every active body of the solver's set, in order.
+  for (int i = 0; i < m_softBodySet.size(); ++i) {
+    btSoftBody& body = *m_softBodySet[i];
+    if (!body.isActive()) continue;
+    if (collectHolds(body)) {
+      solveMeasuringHolds(body);
+    } else {
+      body.solveConstraints();
+    }
+  }
+}
+
+bool SoftBodySolver::collectHolds(btSoftBody& body) {
+  m_held.clear();
+  m_sharedHolds.clear();
+  const int nodeCount = body.m_nodes.size();
+  if (m_heldOfNode.size() < static_cast<std::size_t>(nodeCount)) m_heldOfNode.resize(nodeCount, -1);
+  const btSoftBody::Node* const firstNode = nodeCount > 0 ? &body.m_nodes[0] : nullptr;
+  for (Tool* tool : m_configuration.tools()) {
+    for (const auto& pair : tool->m_pairs) {
+      const detail::PairState& state = *pair;
+      if (state.softBody != &body || state.holdCount == 0 ||
+          state.firstHold + state.holdCount > body.m_rcontacts.size()) {
+        continue;
+      }
+      for (int k = 0; k < state.holdCount; ++k) {
+        const btSoftBody::RContact& contact = body.m_rcontacts[state.firstHold + k];
+        // Contacts of an earlier step, since replaced: not this pair's holds.
+        if (contact.m_cti.m_colObj != state.holdBodies[static_cast<std::size_t>(k)].get()) break;
+        const int node = static_cast<int>(contact.m_node - firstNode);
+        int& entry = m_heldOfNode[static_cast<std::size_t>(node)];
+        if (entry < 0) {
+          entry = static_cast<int>(m_held.size());
+          m_held.push_back({node, tool, false, false, btVector3(0, 0, 0), btVector3(0, 0, 0)});
+        } else if (m_held[static_cast<std::size_t>(entry)].tool != tool) {
+          m_held[static_cast<std::size_t>(entry)].severalTools = true;
+        }
+        m_sharedHolds.push_back({state.firstHold + k, entry, tool});
+      }
+    }
+  }
+  if (m_held.empty()) return false;
+  for (int c = 0; c < body.m_rcontacts.size(); ++c) {
+    const btSoftBody::RContact& contact = body.m_rcontacts[c];
+    const int entry = m_heldOfNode[static_cast<std::size_t>(contact.m_node - firstNode)];
+    if (entry < 0) continue;
+    HeldNode& held = m_held[static_cast<std::size_t>(entry)];
+    if (contact.m_cti.m_colObj == nullptr || contact.m_cti.m_colObj->getUserPointer() != &detail::kHoldBodyMark) {
+      held.bulletContact = true;
+    }
+  }
+  const auto notShared = [&](const SharedHold& hold) {
+    const HeldNode& held = m_held[static_cast<std::size_t>(hold.held)];
+    return !held.severalTools || held.bulletContact;
+  };
+  m_sharedHolds.erase(std::remove_if(m_sharedHolds.begin(), m_sharedHolds.end(), notShared), m_sharedHolds.end());
+  std::sort(m_sharedHolds.begin(), m_sharedHolds.end(),
+            [](const SharedHold& a, const SharedHold& b) { return a.contact < b.contact; });
+  for (const HeldNode& held : m_held) {
+    m_heldOfNode[static_cast<std::size_t>(held.node)] = -1;
+    if (held.bulletContact) ++held.tool->m_holdNodesShared;
+  }
+  return true;
+}
+
+void SoftBodySolver::replaySharedHolds(btSoftBody& body, double inverseStepSquared) {
+  // Each hold as PSolve_RContacts solves it (a contact with a body of zero inverse mass whose
+  // velocity aims at the plane, fillHoldContact in ToolAlgorithm.cpp), from where the stage
+  // found the node, so that each tool gets the part of the move its own hold made.
+  const btScalar dt = body.m_sst.sdt;
+  const btScalar margin = body.getCollisionShape()->getMargin();
+  for (HeldNode& held : m_held) held.replayed = held.before;
+  for (const SharedHold& shared : m_sharedHolds) {
+    HeldNode& held = m_held[static_cast<std::size_t>(shared.held)];
+    const btSoftBody::RContact& contact = body.m_rcontacts[shared.contact];
+    const btSoftBody::Node& node = body.m_nodes[held.node];
+    const auto& holdBody = static_cast<const btRigidBody&>(*contact.m_cti.m_colObj);
+    const btVector3 relative = (held.replayed - node.m_q) - holdBody.getLinearVelocity() * dt;
+    const btVector3& normal = contact.m_cti.m_normal;
+    const btScalar approach = relative.dot(normal);
+    if (approach > SIMD_EPSILON) continue;
+    const btScalar depth = btMin(held.replayed.dot(normal) + contact.m_cti.m_offset, margin);
+    const btVector3 tangential = relative - normal * approach;
+    const btVector3 impulse = contact.m_c0 * (relative - tangential * contact.m_c3 + normal * (depth * contact.m_c4));
+    const btVector3 move = impulse * contact.m_c2;
+    held.replayed -= move;
+    addHoldForce(shared.tool->m_holdWrench, node, move, inverseStepSquared);
+  }
+}
+
+void SoftBodySolver::solveMeasuringHolds(btSoftBody& body) {
+  // Bullet 3.24's btSoftBody::solveConstraints (btSoftBody.cpp), stage for stage and in its
+  // arithmetic, so that a body solved here moves exactly as Bullet would move it.
+  body.applyClusters(false);
+  for (int i = 0; i < body.m_links.size(); ++i) {
+    btSoftBody::Link& link = body.m_links[i];
+    link.m_c3 = link.m_n[1]->m_q - link.m_n[0]->m_q;
+    link.m_c2 = 1 / (link.m_c3.length2() * link.m_c0);
+  }
+  for (int i = 0; i < body.m_anchors.size(); ++i) {
+    btSoftBody::Anchor& anchor = body.m_anchors[i];
+    const btVector3 arm = anchor.m_body->getWorldTransform().getBasis() * anchor.m_local;
+    anchor.m_c0 = ImpulseMatrix(body.m_sst.sdt, anchor.m_node->m_im, anchor.m_body->getInvMass(),
+                                anchor.m_body->getInvInertiaTensorWorld(), arm);
+    anchor.m_c1 = arm;
+    anchor.m_c2 = body.m_sst.sdt * anchor.m_node->m_im;
+    anchor.m_body->activate();
+  }
+  btSoftBody::Config& config = body.m_cfg;
+  if (config.viterations > 0) {
+    for (int iteration = 0; iteration < config.viterations; ++iteration) {
+      for (int stage = 0; stage < config.m_vsequence.size(); ++stage) {
+        btSoftBody::getSolver(config.m_vsequence[stage])(&body, 1);
+      }
+    }
+    for (int i = 0; i < body.m_nodes.size(); ++i) {
+      btSoftBody::Node& node = body.m_nodes[i];
+      node.m_x = node.m_q + node.m_v * body.m_sst.sdt;
+    }
+  }
+  if (config.piterations > 0) {
+    // A hold moves its node by -impulse·m⁻¹·dt and gives the tool's stand-in body +impulse: the
+    // force on the tool over the step is Σ m·(before - after)/dt² over the contact stages.
+    const double inverseStepSquared = double(body.m_sst.isdt) * double(body.m_sst.isdt);
+    for (int iteration = 0; iteration < config.piterations; ++iteration) {
+      const btScalar fraction = iteration / btScalar(config.piterations);
+      for (int stage = 0; stage < config.m_psequence.size(); ++stage) {
+        const bool contacts = config.m_psequence[stage] == btSoftBody::ePSolver::RContacts;
+        if (contacts) {
+          for (HeldNode& held : m_held) held.before = body.m_nodes[held.node].m_x;
+        }
+        btSoftBody::getSolver(config.m_psequence[stage])(&body, 1, fraction);
+        if (!contacts) continue;
+        for (const HeldNode& held : m_held) {
+          const btSoftBody::Node& node = body.m_nodes[held.node];
+          if (held.severalTools || held.bulletContact) continue;
+          addHoldForce(held.tool->m_holdWrench, node, held.before - node.m_x, inverseStepSquared);
+        }
+        if (!m_sharedHolds.empty()) replaySharedHolds(body, inverseStepSquared);
+      }
+    }
+    const btScalar velocityFactor = body.m_sst.isdt * (1 - config.kDP);
+    for (int i = 0; i < body.m_nodes.size(); ++i) {
+      btSoftBody::Node& node = body.m_nodes[i];
+      node.m_v = (node.m_x - node.m_q) * velocityFactor;
+      node.m_f = btVector3(0, 0, 0);
+    }
+  }
+  if (config.diterations > 0) {
+    const btScalar driftFactor = config.kVCF * body.m_sst.isdt;
+    for (int i = 0; i < body.m_nodes.size(); ++i) {
+      btSoftBody::Node& node = body.m_nodes[i];
+      node.m_q = node.m_x;
+    }
+    for (int iteration = 0; iteration < config.diterations; ++iteration) {
+      for (int stage = 0; stage < config.m_dsequence.size(); ++stage) {
+        btSoftBody::getSolver(config.m_dsequence[stage])(&body, 1, 0);
+      }
+    }
+    for (int i = 0; i < body.m_nodes.size(); ++i) {
+      btSoftBody::Node& node = body.m_nodes[i];
+      node.m_v += (node.m_x - node.m_q) * driftFactor;
+    }
+  }
+  body.dampClusters();
+  body.applyClusters(true);
+}
+
 void SoftBodySolver::solveConstraints(btScalar timeStep) {
   using Clock = std::chrono::steady_clock;
   const auto measureStart = Clock::now();
   measureEnergy(timeStep);
   const auto measureEnd = Clock::now();
-  btDefaultSoftBodySolver::solveConstraints(timeStep);
+  for (Tool* tool : m_configuration.tools()) {
+    tool->m_holdWrench = Wrench{};
+    tool->m_holdNodesShared = 0;
+  }
+  solveSoftBodies();
   ++m_step;
   std::vector<Tool*>& tools = m_active;
   tools.clear();
@@ -545,7 +730,15 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
     const Vec3 velocity = toVec3(node.m_v);
     const Real along = dot(velocity, normal);
     const Vec3 separated = velocity + normal * (std::max(along, dot(toolVelocity, normal)) - along);
-    if (isFinite(separated)) node.m_v = toBt(separated);
+    if (isFinite(separated)) {
+      node.m_v = toBt(separated);
+      if (node.m_im > 0) {
+        // The node's change of momentum, whose opposite the tool takes, over the step.
+        const Vec3 force = (velocity - separated) * (inverseStep / Real(node.m_im));
+        tool.m_holdWrench.force += force;
+        tool.m_holdWrench.torque += cross(toolPoint, force);
+      }
+    }
     movedAny = true;
     if (dynamicTool != nullptr && node.m_im > 0) {
       const int backing = m_backingOfNode[id];

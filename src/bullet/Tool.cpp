@@ -147,6 +147,9 @@ const ToolStepReport& Tool::report() {
     bodyPose = m_lastFiniteBodyPose;
   }
   contactForce.torquePoint = bodyPose.apply(m_options.force.torquePoint);
+  diagnostics.lastWord.holdNodesShared = m_holdNodesShared;
+  m_report.holdWrench.force = m_holdWrench.force;
+  m_report.holdWrench.torque = m_holdWrench.torque - cross(bodyPose.translation, m_holdWrench.force);
 
   for (const auto& statePointer : m_pairs) {
     const detail::PairState& state = *statePointer;

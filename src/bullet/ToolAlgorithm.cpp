@@ -152,9 +152,11 @@ Real applyResponse(PairState& state, btSoftBody& softBody, btRigidBody* dynamicB
     while (state.holdBodies.size() < grown) {
       state.holdBodies.push_back(
           std::make_unique<btRigidBody>(btRigidBody::btRigidBodyConstructionInfo(0, nullptr, nullptr)));
+      state.holdBodies.back()->setUserPointer(const_cast<char*>(&kHoldBodyMark));
     }
   }
   Index holdsUsed = 0;
+  state.firstHold = slot;
   for (const NodeHold& hold : state.holds) {
     if (!usable(hold)) {
       continue;
@@ -163,6 +165,7 @@ Real applyResponse(PairState& state, btSoftBody& softBody, btRigidBody* dynamicB
     btSoftBody::Node& node = softBody.m_nodes[static_cast<int>(state.patch.nodeIds[hold.vertex])];
     fillHoldContact(softBody.m_rcontacts[slot++], node, hold, *state.holdBodies[holdsUsed++], timeStep);
   }
+  state.holdCount = static_cast<int>(holdsUsed);
   return std::sqrt(longestSquared);
 }
 

@@ -199,5 +199,78 @@ TEST(ToolKinds, ATeleportedToolDoesNotFlingTheTissue) {
   }
 }
 
+// A cloth laid on a kinematic plate registered as a tool: once it rests, the plate's report carries
+// its weight, the response's and the soft solver's holds' together (the clamp's test has a grasp,
+// where the holds carry most of it).
+TEST(ToolKinds, AToolCarriesTheWeightOfAClothRestingOnIt) {
+  SoftWorld soft;
+  btBoxShape plateShape(btVector3(1, btScalar(0.01), 1));
+  btDefaultMotionState plateMotion(btTransform(btQuaternion::getIdentity(), btVector3(0, 0, 0)));
+  btRigidBody plate(btRigidBody::btRigidBodyConstructionInfo(0, &plateMotion, &plateShape));
+  plate.setCollisionFlags(plate.getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
+  plate.setActivationState(DISABLE_DEACTIVATION);
+  soft.world.addRigidBody(&plate);
+  Tool& tool = addTool(soft.world, plate);
+  const btScalar h = btScalar(0.08);
+  btSoftBody* cloth = btSoftBodyHelpers::CreatePatch(soft.world.getWorldInfo(), btVector3(-0.5, h, -0.5),
+                                                     btVector3(0.5, h, -0.5), btVector3(-0.5, h, 0.5),
+                                                     btVector3(0.5, h, 0.5), 9, 9, 0, true);
+  cloth->getCollisionShape()->setMargin(btScalar(0.02));
+  cloth->setTotalMass(2);
+  soft.world.addSoftBody(cloth);
+  const double weight = 2 * 10;
+  double carried = 0;
+  int steps = 0;
+  for (int i = 0; i < 240; ++i) {
+    soft.world.stepSimulation(btScalar(1.0 / 120), 1, btScalar(1.0 / 120));
+    const ToolStepReport& report = tool.report();
+    EXPECT_TRUE(isFinite(report.holdWrench.force) && isFinite(report.holdWrench.torque));
+    if (i >= 180) {  // resting for the last half second
+      carried += report.wrench.force.y + report.holdWrench.force.y;
+      ++steps;
+    }
+  }
+  EXPECT_NEAR(carried / steps, -weight, 0.05 * weight) << "the cloth presses down on the plate";
+  soft.world.removeSoftBody(cloth);
+  delete cloth;
+  removeTool(soft.world, plate);
+  soft.world.removeRigidBody(&plate);
+}
+
+// Bullet's own soft solver applies the holds too, but no one measures them there.
+TEST(ToolKinds, WithBulletsSoftSolverTheHoldsLoadIsNotMeasured) {
+  CollisionConfiguration configuration;
+  btCollisionDispatcher dispatcher(&configuration);
+  btDbvtBroadphase broadphase;
+  btSequentialImpulseConstraintSolver solver;
+  btSoftRigidDynamicsWorld world(&dispatcher, &broadphase, &solver, &configuration);
+  world.setGravity(btVector3(0, -10, 0));
+  world.getWorldInfo().m_gravity = btVector3(0, -10, 0);
+  btBoxShape plateShape(btVector3(1, btScalar(0.01), 1));
+  btDefaultMotionState plateMotion(btTransform(btQuaternion::getIdentity(), btVector3(0, 0, 0)));
+  btRigidBody plate(btRigidBody::btRigidBodyConstructionInfo(0, &plateMotion, &plateShape));
+  plate.setCollisionFlags(plate.getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
+  world.addRigidBody(&plate);
+  Tool& tool = addTool(world, plate);
+  btSoftBody* cloth = btSoftBodyHelpers::CreatePatch(world.getWorldInfo(), btVector3(-0.5, 0.05f, -0.5),
+                                                     btVector3(0.5, 0.05f, -0.5), btVector3(-0.5, 0.05f, 0.5),
+                                                     btVector3(0.5, 0.05f, 0.5), 9, 9, 0, true);
+  cloth->getCollisionShape()->setMargin(btScalar(0.02));
+  cloth->setTotalMass(2);
+  world.addSoftBody(cloth);
+  double moved = 0;
+  for (int i = 0; i < 60; ++i) {
+    world.stepSimulation(btScalar(1.0 / 120), 1, btScalar(1.0 / 120));
+    const ToolStepReport& report = tool.report();
+    moved += double(report.diagnostics.nodesMoved);
+    EXPECT_EQ(report.holdWrench.force, Vec3{});
+  }
+  EXPECT_GT(moved, 0) << "the tool held the cloth";
+  world.removeSoftBody(cloth);
+  delete cloth;
+  removeTool(world, plate);
+  world.removeRigidBody(&plate);
+}
+
 }  // namespace
 }  // namespace thintool::scenes

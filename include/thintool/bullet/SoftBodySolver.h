@@ -14,7 +14,8 @@
 /// Bullet runs the world's soft-body solver after the collision pass, and the solver moves the
 /// nodes again (links, pressure, its own contacts): whatever the collision pass did, the soft
 /// solver has the last word on where a node ends the step. This one runs Bullet's own solve
-/// unchanged, then, for every tool of the configuration whose ToolOptions::separation is enabled,
+/// unchanged (for a body that tools hold in it, Bullet's stages one by one, so as to measure what
+/// the holds carried: ToolStepReport::holdWrench), then, for every tool of the configuration whose ToolOptions::separation is enabled,
 /// puts every soft node and face near the tool back on its side (response/Separation.h) and sets
 /// a moved node's velocity along its move to the faster of its own and the tool's (no bounce). A
 /// dynamic tool receives the moved nodes' reaction as impulses, unless its force model already
@@ -100,6 +101,17 @@ class SoftBodySolver : public btDefaultSoftBodySolver {
   // The soft body's pinned nodes stop the dynamic tool that carries the piece short of them.
   void stopAtPinnedNodes(btRigidBody& tool, const ToolModel& piece, const Pose& pieceEnd, Real inverseStep,
                          const SoftBodyCache& cache, const btSoftBody& softBody);
+  // The soft solve of each active body. A body that tools hold in the solver (their holds among
+  // its contacts) is solved by solveMeasuringHolds, the others by Bullet's own solveConstraints.
+  void solveSoftBodies();
+  // Lists in m_held the nodes that tools hold in this body's solve; false when none.
+  bool collectHolds(btSoftBody& body);
+  // btSoftBody::solveConstraints, stage for stage, with each contact stage of the position solve
+  // measured: the moves of the held nodes are the impulses their holds applied.
+  void solveMeasuringHolds(btSoftBody& body);
+  // Splits a contact stage's moves of the nodes that several tools held among those tools.
+  void replaySharedHolds(btSoftBody& body, double inverseStepSquared);
+
   // Fills m_backingOfNode from the soft body's contacts of this step.
   void findBackings(const btSoftBody& softBody);
 
@@ -122,6 +134,26 @@ class SoftBodySolver : public btDefaultSoftBodySolver {
   // soft node -> its contact in the soft body's m_rcontacts with a static or kinematic body, -1 for
   // none; filled only while a dynamic tool takes the reaction of moved nodes
   std::vector<int> m_backingOfNode;
+  // A soft node that tools held in this step's solve: the first tool that held it, whether others
+  // did too or a contact of Bullet's own holds it as well, and where it was before a contact stage.
+  struct HeldNode {
+    int node = 0;
+    Tool* tool = nullptr;
+    bool severalTools = false;
+    bool bulletContact = false;
+    btVector3 before{0, 0, 0};
+    btVector3 replayed{0, 0, 0};
+  };
+  // A hold on a node that several tools held: the contact stage's move of such a node is split
+  // among them by replaying their holds one by one, in the stage's order.
+  struct SharedHold {
+    int contact = 0;
+    int held = 0;  // entry in m_held
+    Tool* tool = nullptr;
+  };
+  std::vector<HeldNode> m_held;
+  std::vector<SharedHold> m_sharedHolds;
+  std::vector<int> m_heldOfNode;  // soft node -> its entry in m_held, -1 for none
   int m_step = 0;
   bool m_dynamicToolsActive = false;  // a tool of this step's last word is dynamic and takes reactions
 };

@@ -51,6 +51,10 @@ struct LastWordDiagnostics {
   /// to the speed bound, and kinetic energy it took out to meet the energy bound (J).
   Index nodesSlowed = 0;
   double energyRemoved = 0;
+  /// Nodes the tool held in the soft solver whose load ToolStepReport::holdWrench leaves out: another
+  /// tool or another body's contact held them too, and the solver's move of the node does not say
+  /// which took what.
+  Index holdNodesShared = 0;
   /// Soft nodes left inside the tool or soft faces left pierced by it after the stage: the
   /// invariant, expected 0.
   Index violations() const { return counts.nodesInside + counts.facesPierced; }
@@ -121,6 +125,12 @@ struct ToolStepReport {
   /// Force (N) and torque about the tool body's origin (N·m) the response put on the tool: the
   /// reaction of the soft nodes it moved, Σ m·Δx/dt².
   Wrench wrench;
+  /// Force (N) and torque about the tool body's origin (N·m) that the soft solver's holds put on
+  /// the tool (ResponseSettings::holdInSolver): the impulses Bullet's contact stage applied through
+  /// them over the step, divided by the step. The nodes' weight on a grasping jaw comes this way,
+  /// not through wrench. Measured in a world whose soft-body solver is a thintool::SoftBodySolver;
+  /// zero elsewhere.
+  Wrench holdWrench;
   /// The tissue's force on the tool by the force model (Hunt–Crossley by default).
   ToolForce contactForce;
 };
@@ -222,6 +232,8 @@ class Tool {
   bool m_hasSeparatedPose = false;
   bool m_separationJump = false;
   LastWordDiagnostics m_lastWord;
+  Wrench m_holdWrench;  // this step's, torque about the world's origin
+  Index m_holdNodesShared = 0;
   Pose m_lastFiniteBodyPose;  // the report's frame when the body's transform is not finite
   /// The configuration's record of the current collision pass; null for a tool made without one.
   detail::CollisionPass* m_pass = nullptr;
