@@ -58,6 +58,20 @@ btVector3 momentum(const btSoftBody& body) {
   return p;
 }
 
+// The resultant of Bullet's pressure forces on the body for its next step, as btSoftBody's
+// applyForces will add them: kPR·area·normal/|volume| at each free node. On a squeezed mesh the
+// node areas and normals do not close, so the body's own pressure pushes it as a whole.
+btVector3 pressureResultant(btSoftBody& body) {
+  btVector3 sum(0, 0, 0);
+  if (body.m_cfg.kPR == 0) return sum;
+  const btScalar perArea = body.m_cfg.kPR / btFabs(body.getVolume());
+  for (int i = 0; i < body.m_nodes.size(); ++i) {
+    const btSoftBody::Node& node = body.m_nodes[i];
+    if (node.m_im > 0) sum += node.m_n * (node.m_area * perArea);
+  }
+  return sum;
+}
+
 double lowest(const btSoftBody& body) {
   double low = 1e30;
   for (int i = 0; i < body.m_nodes.size(); ++i) low = std::min(low, double(body.m_nodes[i].m_x.y()));
@@ -144,6 +158,7 @@ ClampRun runClamp(const ClampRunSettings& settings) {
       if (name == "lift") pose.setOrigin(handle.getOrigin() + btVector3(0, btScalar(settings.liftHeight * s), 0));
       if (name == "release") opening = closed + (open - closed) * s;
       clamp.setPose(pose, opening);
+      const btVector3 pressure = pressureResultant(*body);
       const auto start = std::chrono::steady_clock::now();
       world.stepSimulation(dt, 1, dt);
       wallMicroseconds += std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
@@ -161,6 +176,7 @@ ClampRun runClamp(const ClampRunSettings& settings) {
       sample.onBody = forces.onBody;
       const btVector3 p = momentum(*body);
       sample.bodyNetForce = toVec3((p - lastMomentum) / dt - world.getGravity() * body->getTotalMass());
+      sample.bodyPressure = toVec3(pressure);
       lastMomentum = p;
       sample.bodyLowest = lowest(*body);
       sample.bodyCentreHeight = meanHeight(*body);

@@ -46,6 +46,9 @@ struct ClampSample {
   /// N, the body's momentum change less its weight, Δp/dt - m·g: every force on it but gravity,
   /// measured independently of ThinTool (while it hangs free, the jaws' whole resultant).
   Vec3 bodyNetForce;
+  /// N, the resultant of Bullet's pressure forces on the body in the step (kPR·area·normal/volume
+  /// at each node): zero on a round body, not on a squeezed mesh, and part of bodyNetForce.
+  Vec3 bodyPressure;
   double bodyLowest = 0;       ///< m, the body's lowest node height
   double bodyCentreHeight = 0; ///< m, mean node height
   int crossed = 0;             ///< nodes that passed through either jaw so far

@@ -110,7 +110,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "clamp_demo: cannot write %s\n", csv.c_str());
     return 1;
   }
-  out << "body,friction,time,phase,opening,grip,upper_jaw,lower_jaw,body_net_force_y,body_centre_height\n";
+  out << "body,friction,time,phase,opening,grip,upper_jaw,lower_jaw,body_net_force_y,body_centre_height,"
+         "jaws_on_body_y,body_pressure_y\n";
 
   std::printf("| body | friction | rest height (m) | held at (m) | after release (m) | crossed | jaw inside | "
               "jaw squeeze, upper / lower (N) | us/step |\n|---|---|---:|---:|---:|---:|---|---:|---:|\n");
@@ -129,7 +130,7 @@ int main(int argc, char** argv) {
       for (const ClampSample& s : run.samples) {
         out << clampBodyName(body) << ',' << (friction ? 1 : 0) << ',' << s.time << ',' << s.phase << ','
             << s.opening << ',' << s.grip << ',' << length(s.onUpperJaw) << ',' << length(s.onLowerJaw) << ','
-            << s.bodyNetForce.y << ',' << s.bodyCentreHeight << '\n';
+            << s.bodyNetForce.y << ',' << s.bodyCentreHeight << ',' << s.onBody.y << ',' << s.bodyPressure.y << '\n';
       }
     }
   }

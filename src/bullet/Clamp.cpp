@@ -115,7 +115,8 @@ void Clamp::setPose(const btTransform& handlePose, Real opening) {
 ClampForces Clamp::forces() {
   ClampForces out;
   for (int i = 0; i < 2; ++i) {
-    out.onJaw[i] = jaw(i).report().wrench.force;
+    const ToolStepReport& report = jaw(i).report();
+    out.onJaw[i] = report.wrench.force + report.holdWrench.force;
     out.onBody -= out.onJaw[i];
     // The tissue pushes a jaw away from the other one: along +y of the upper jaw, -y of the lower.
     const btVector3 outward = m_jawBodies[i]->getWorldTransform().getBasis().getColumn(1) * (i == 0 ? 1 : -1);

@@ -86,6 +86,18 @@ TEST_P(Grasp, WithFrictionTheBodyIsLiftedHeldAndDropped) {
     }
   }
   EXPECT_NEAR(support / samples, 10, 1) << "1 kg at g = 10 m/s²";
+  // The jaws' reports say what carries it: the response's moves and the soft solver's holds, with
+  // the body's own pressure (which does not cancel on a squeezed mesh) making up the balance.
+  double reported = 0;
+  double pressure = 0;
+  for (const ClampSample& s : run.samples) {
+    if (s.phase == "hold" && s.time > run.samples.back().time - 3.5) {
+      reported += s.onBody.y;
+      pressure += s.bodyPressure.y;
+    }
+  }
+  EXPECT_NEAR((reported + pressure) / samples, support / samples, 0.02 * std::abs(support / samples));
+  EXPECT_GT(reported / samples, 0.7 * 10) << "the jaws carry most of the weight";
   // At rest the squeezes on the two jaws are equal and opposite, within 15 % (the clamp's V pushes
   // the body out of the jaws, and each jaw's share of the friction that holds it differs).
   EXPECT_GT(run.upperSqueeze * -run.lowerSqueeze, 0) << "opposite signs";

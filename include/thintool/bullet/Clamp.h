@@ -40,7 +40,9 @@ struct ClampSettings {
   }
 };
 
-/// What the jaws feel in the latest step (N, world), from each jaw's response wrench.
+/// What the jaws feel in the latest step (N, world), from each jaw's report: the response's
+/// wrench and, in a world whose soft-body solver is a thintool::SoftBodySolver, the load its holds
+/// carried (ToolStepReport::holdWrench), which is where a lifted body's weight comes in.
 struct ClampForces {
   std::array<Vec3, 2> onJaw;  ///< the tissue's force on the upper and the lower jaw
   Vec3 onBody;                ///< the jaws' resultant on the grasped body: -(onJaw[0] + onJaw[1])
