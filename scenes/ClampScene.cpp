@@ -144,6 +144,7 @@ ClampRun runClamp(const ClampRunSettings& settings) {
   double wallMicroseconds = 0;
   int steps = 0;
   double squeezeSum[2] = {0, 0};
+  double carrySum[3] = {0, 0, 0};
   int squeezeSamples = 0;
   btVector3 lastMomentum = momentum(*body);
   bool stopped = false;
@@ -195,6 +196,9 @@ ClampRun runClamp(const ClampRunSettings& settings) {
         if (i > count - last) {
           squeezeSum[0] += forces.onJaw[0].z;
           squeezeSum[1] += forces.onJaw[1].z;
+          carrySum[0] += sample.onBody.y;
+          carrySum[1] += sample.bodyPressure.y;
+          carrySum[2] += sample.bodyNetForce.y;
           ++squeezeSamples;
         }
         if (i == count) run.liftedCentreHeight = sample.bodyCentreHeight;
@@ -210,6 +214,11 @@ ClampRun runClamp(const ClampRunSettings& settings) {
   run.droppedCentreHeight = meanHeight(*body);
   run.upperSqueeze = squeezeSamples > 0 ? squeezeSum[0] / squeezeSamples : 0;
   run.lowerSqueeze = squeezeSamples > 0 ? squeezeSum[1] / squeezeSamples : 0;
+  if (squeezeSamples > 0) {
+    run.jawsCarry = carrySum[0] / squeezeSamples;
+    run.pressureCarries = carrySum[1] / squeezeSamples;
+    run.momentumBalance = carrySum[2] / squeezeSamples;
+  }
   run.microsecondsPerStep = wallMicroseconds / steps;
 
   world.removeSoftBody(body);

@@ -65,6 +65,9 @@ struct ClampRun {
   /// At rest in the hold: the two jaws' forces along the squeeze axis, averaged over the hold's
   /// last second (N); equal and opposite when the body is held still.
   double upperSqueeze = 0, lowerSqueeze = 0;
+  /// Over the same second, vertical (N): the jaws' resultant on the body from their reports, the
+  /// body's own pressure resultant, and its momentum balance Δp/dt − m·g, which the two make up.
+  double jawsCarry = 0, pressureCarries = 0, momentumBalance = 0;
   double microsecondsPerStep = 0;
 };
 

@@ -114,7 +114,8 @@ int main(int argc, char** argv) {
          "jaws_on_body_y,body_pressure_y\n";
 
   std::printf("| body | friction | rest height (m) | held at (m) | after release (m) | crossed | jaw inside | "
-              "jaw squeeze, upper / lower (N) | us/step |\n|---|---|---:|---:|---:|---:|---|---:|---:|\n");
+              "jaw squeeze, upper / lower (N) | at the hold: jaws / own pressure / momentum balance, vertical (N) | us/step |\n"
+              "|---|---|---:|---:|---:|---:|---|---:|---:|---:|\n");
   int problems = 0;
   for (ClampBody body : {ClampBody::Sphere, ClampBody::Vessel}) {
     for (bool friction : {true, false}) {
@@ -122,10 +123,10 @@ int main(int argc, char** argv) {
       settings.body = body;
       settings.friction = friction;
       const ClampRun run = runClamp(settings);
-      std::printf("| %s | %s | %.3f | %.3f | %.3f | %d | %s | %.1f / %.1f | %.0f |\n", clampBodyName(body),
-                  friction ? "on" : "off", run.restCentreHeight, run.liftedCentreHeight, run.droppedCentreHeight,
-                  run.crossed, run.jawEverInside ? "YES" : "no", run.upperSqueeze, run.lowerSqueeze,
-                  run.microsecondsPerStep);
+      std::printf("| %s | %s | %.3f | %.3f | %.3f | %d | %s | %.1f / %.1f | %.2f / %.2f / %.2f | %.0f |\n",
+                  clampBodyName(body), friction ? "on" : "off", run.restCentreHeight, run.liftedCentreHeight,
+                  run.droppedCentreHeight, run.crossed, run.jawEverInside ? "YES" : "no", run.upperSqueeze,
+                  run.lowerSqueeze, run.jawsCarry, run.pressureCarries, run.momentumBalance, run.microsecondsPerStep);
       problems += run.crossed > 0 || run.jawEverInside;
       for (const ClampSample& s : run.samples) {
         out << clampBodyName(body) << ',' << (friction ? 1 : 0) << ',' << s.time << ',' << s.phase << ','
@@ -146,10 +147,12 @@ int main(int argc, char** argv) {
       "set ylabel 'force (N)'\nset grid\nset key top right\n"
       "set title 'sphere, friction on'\n"
       "plot '" + csv + "' using (strcol(1) eq 'sphere' && $2 == 1 ? $3 : 1/0):6 with lines lw 2 title 'grip (each jaw, normal)', "
-      "'' using (strcol(1) eq 'sphere' && $2 == 1 ? $3 : 1/0):9 with lines lw 1 title 'resultant on the body, vertical (dp/dt - mg)'\n"
+      "'' using (strcol(1) eq 'sphere' && $2 == 1 ? $3 : 1/0):9 with lines lw 1 title 'resultant on the body, vertical (dp/dt - mg)', "
+      "'' using (strcol(1) eq 'sphere' && $2 == 1 ? $3 : 1/0):11 with lines lw 1 title 'the jaws on the body, vertical, as they report it'\n"
       "set title 'vessel, friction on'\nset xlabel 'time (s)'\n"
       "plot '" + csv + "' using (strcol(1) eq 'vessel' && $2 == 1 ? $3 : 1/0):6 with lines lw 2 title 'grip (each jaw, normal)', "
-      "'' using (strcol(1) eq 'vessel' && $2 == 1 ? $3 : 1/0):9 with lines lw 1 title 'resultant on the body, vertical (dp/dt - mg)'\n"
+      "'' using (strcol(1) eq 'vessel' && $2 == 1 ? $3 : 1/0):9 with lines lw 1 title 'resultant on the body, vertical (dp/dt - mg)', "
+      "'' using (strcol(1) eq 'vessel' && $2 == 1 ? $3 : 1/0):11 with lines lw 1 title 'the jaws on the body, vertical, as they report it'\n"
       "unset multiplot\n";
   std::string whyNot;
   if (examples::runGnuplot(outDir + "/clamp_demo_force.gp", script, whyNot)) {
