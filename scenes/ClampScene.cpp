@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 
 namespace thintool::scenes {
 
@@ -78,61 +79,139 @@ double lowest(const btSoftBody& body) {
   return low;
 }
 
+// The scene up to the grasp: the ground, the settled body, the open clamp at its hinge; then one
+// step at a time, each with its sample.
+class ClampStage {
+ public:
+  ClampStage(ClampBody kind, bool friction, double timeStep, double squeeze) : m_timeStep(timeStep) {
+    btSoftRigidDynamicsWorld& world = m_soft.world;
+    btSoftBodyWorldInfo& info = world.getWorldInfo();
+    info.m_sparsesdf.setDefaultVoxelsz(btScalar(0.02));
+    info.m_sparsesdf.Reset();
+    world.addRigidBody(&m_ground);
+
+    // The baseline's soft material (shared/notes/baseline.md, variant E).
+    const Body shape = bodyOf(kind);
+    m_body = btSoftBodyHelpers::CreateEllipsoid(info, btVector3(0, shape.radii.y() + 0.3, 0), shape.radii,
+                                                shape.resolution);
+    m_body->m_materials[0]->m_kLST = 0.5;
+    m_body->m_cfg.kDF = 0.5;
+    m_body->m_cfg.kPR = 50;
+    m_body->m_cfg.kKHR = 1;
+    m_body->m_cfg.piterations = 10;
+    m_body->m_cfg.kDP = btScalar(1 - std::pow(0.95, 60 * timeStep));
+    m_body->setTotalMass(1);
+    m_body->getCollisionShape()->setMargin(btScalar(0.05));
+    world.addSoftBody(m_body);
+
+    const btScalar dt = btScalar(timeStep);
+    for (int i = 0; i < stepsOf(2); ++i) world.stepSimulation(dt, 1, dt);
+
+    m_restCentreHeight = meanHeight(*m_body);
+    const double radius = shape.radii.z();  // across the jaws
+    m_clampSettings.jawHalfExtents = {1.6, 0.01, 0.3};
+    m_clampSettings.jawOptions.response.friction.enabled = friction;
+    m_handle = btTransform(kHandleOrientation, btVector3(btScalar(-kHingeDistance), btScalar(m_restCentreHeight), 0));
+    m_clamp = std::make_unique<Clamp>(world, m_clampSettings, m_handle, m_clampSettings.maxOpening);
+    m_closed = 2 * std::atan((1 - squeeze) * radius / kHingeDistance);
+
+    m_faces = faceIndices(*m_body);
+    const auto b = boxes();
+    for (int j = 0; j < 2; ++j) m_trackers[j].start(b[j], nodePositions(*m_body), m_restCentreHeight);
+    m_lastMomentum = momentum(*m_body);
+  }
+
+  ~ClampStage() {
+    m_clamp.reset();
+    m_soft.world.removeSoftBody(m_body);
+    delete m_body;
+    m_soft.world.removeRigidBody(&m_ground);
+  }
+
+  ClampStage(const ClampStage&) = delete;
+  ClampStage& operator=(const ClampStage&) = delete;
+
+  int stepsOf(double seconds) const { return std::max(1, static_cast<int>(std::lround(seconds / m_timeStep))); }
+  double restCentreHeight() const { return m_restCentreHeight; }
+  const btTransform& handle() const { return m_handle; }  // where the clamp began, open
+  double open() const { return m_clampSettings.maxOpening; }
+  double closed() const { return m_closed; }
+  Clamp& clamp() { return *m_clamp; }
+  const btSoftRigidDynamicsWorld& world() const { return m_soft.world; }
+  double centreHeight() const { return meanHeight(*m_body); }
+  double wallMicroseconds() const { return m_wallMicroseconds; }
+
+  // Sets the clamp, steps the world once, and samples it.
+  ClampSample step(const btTransform& pose, double opening, const std::string& phase, ClampForces& forces) {
+    m_clamp->setPose(pose, opening);
+    const btVector3 pressure = pressureResultant(*m_body);
+    const btScalar dt = btScalar(m_timeStep);
+    const auto start = std::chrono::steady_clock::now();
+    m_soft.world.stepSimulation(dt, 1, dt);
+    m_wallMicroseconds += std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+    m_time += m_timeStep;
+
+    forces = m_clamp->forces();
+    ClampSample sample;
+    sample.time = m_time;
+    sample.phase = phase;
+    sample.opening = m_clamp->opening();
+    sample.grip = forces.grip;
+    sample.onUpperJaw = forces.onJaw[0];
+    sample.onLowerJaw = forces.onJaw[1];
+    sample.onBody = forces.onBody;
+    const btVector3 p = momentum(*m_body);
+    sample.bodyNetForce = toVec3((p - m_lastMomentum) / dt - m_soft.world.getGravity() * m_body->getTotalMass());
+    sample.bodyPressure = toVec3(pressure);
+    m_lastMomentum = p;
+    sample.bodyLowest = lowest(*m_body);
+    sample.bodyCentreHeight = meanHeight(*m_body);
+    const auto b = boxes();
+    const std::vector<Point> nodes = nodePositions(*m_body);
+    for (int j = 0; j < 2; ++j) {
+      m_trackers[j].update(b[j], nodes, m_faces);
+      sample.crossed += m_trackers[j].metrics().crossed;
+      sample.jawInside = sample.jawInside || m_trackers[j].metrics().endsInside;
+    }
+    return sample;
+  }
+
+ private:
+  std::array<ToolBox, 2> boxes() {
+    return std::array<ToolBox, 2>{
+        jawBox(m_clamp->jawBody(0).getWorldTransform(), m_clampSettings.jawHalfExtents, false),
+        jawBox(m_clamp->jawBody(1).getWorldTransform(), m_clampSettings.jawHalfExtents, true)};
+  }
+
+  double m_timeStep;
+  SoftWorld m_soft;
+  btBoxShape m_groundShape{btVector3(20, 1, 20)};
+  btDefaultMotionState m_groundMotion{btTransform(btQuaternion::getIdentity(), btVector3(0, -1, 0))};
+  btRigidBody m_ground{btRigidBody::btRigidBodyConstructionInfo(0, &m_groundMotion, &m_groundShape)};
+  btSoftBody* m_body = nullptr;
+  double m_restCentreHeight = 0;
+  ClampSettings m_clampSettings;
+  btTransform m_handle;
+  std::unique_ptr<Clamp> m_clamp;
+  double m_closed = 0;
+  std::vector<std::array<int, 3>> m_faces;
+  std::array<CrossingTracker, 2> m_trackers;
+  btVector3 m_lastMomentum{0, 0, 0};
+  double m_time = 0;
+  double m_wallMicroseconds = 0;
+};
+
 }  // namespace
 
 const char* clampBodyName(ClampBody body) { return body == ClampBody::Sphere ? "sphere" : "vessel"; }
 
 ClampRun runClamp(const ClampRunSettings& settings) {
-  SoftWorld soft;
-  btSoftRigidDynamicsWorld& world = soft.world;
-  btSoftBodyWorldInfo& info = world.getWorldInfo();
-  info.m_sparsesdf.setDefaultVoxelsz(btScalar(0.02));
-  info.m_sparsesdf.Reset();
-
-  btBoxShape groundShape(btVector3(20, 1, 20));
-  btDefaultMotionState groundMotion(btTransform(btQuaternion::getIdentity(), btVector3(0, -1, 0)));
-  btRigidBody ground(btRigidBody::btRigidBodyConstructionInfo(0, &groundMotion, &groundShape));
-  world.addRigidBody(&ground);
-
-  // The baseline's soft material (shared/notes/baseline.md, variant E).
-  const Body shape = bodyOf(settings.body);
-  btSoftBody* body = btSoftBodyHelpers::CreateEllipsoid(info, btVector3(0, shape.radii.y() + 0.3, 0), shape.radii,
-                                                        shape.resolution);
-  body->m_materials[0]->m_kLST = 0.5;
-  body->m_cfg.kDF = 0.5;
-  body->m_cfg.kPR = 50;
-  body->m_cfg.kKHR = 1;
-  body->m_cfg.piterations = 10;
-  body->m_cfg.kDP = btScalar(1 - std::pow(0.95, 60 * settings.timeStep));
-  body->setTotalMass(1);
-  body->getCollisionShape()->setMargin(btScalar(0.05));
-  world.addSoftBody(body);
-
-  const btScalar dt = btScalar(settings.timeStep);
-  auto stepsOf = [&](double seconds) { return std::max(1, static_cast<int>(std::lround(seconds / settings.timeStep))); };
-  for (int i = 0; i < stepsOf(2); ++i) world.stepSimulation(dt, 1, dt);
-
+  ClampStage stage(settings.body, settings.friction, settings.timeStep, settings.squeeze);
   ClampRun run;
-  run.restCentreHeight = meanHeight(*body);
-  const double radius = shape.radii.z();  // across the jaws
-  ClampSettings clampSettings;
-  clampSettings.jawHalfExtents = {1.6, 0.01, 0.3};
-  clampSettings.jawOptions.response.friction.enabled = settings.friction;
-  btTransform handle(kHandleOrientation, btVector3(btScalar(-kHingeDistance), btScalar(run.restCentreHeight), 0));
-  const double open = clampSettings.maxOpening;
-  Clamp clamp(world, clampSettings, handle, open);
-  const double closed = 2 * std::atan((1 - settings.squeeze) * radius / kHingeDistance);
-
-  const std::vector<std::array<int, 3>> faces = faceIndices(*body);
-  std::array<CrossingTracker, 2> trackers;
-  auto boxes = [&] {
-    return std::array<ToolBox, 2>{jawBox(clamp.jawBody(0).getWorldTransform(), clampSettings.jawHalfExtents, false),
-                                  jawBox(clamp.jawBody(1).getWorldTransform(), clampSettings.jawHalfExtents, true)};
-  };
-  {
-    const auto b = boxes();
-    for (int j = 0; j < 2; ++j) trackers[j].start(b[j], nodePositions(*body), run.restCentreHeight);
-  }
+  run.restCentreHeight = stage.restCentreHeight();
+  const btTransform handle = stage.handle();
+  const double open = stage.open();
+  const double closed = stage.closed();
 
   struct Phase {
     const char* name;
@@ -140,59 +219,29 @@ ClampRun runClamp(const ClampRunSettings& settings) {
   };
   const Phase phases[] = {{"close", 1.5}, {"settle", 0.5}, {"lift", 1}, {"hold", settings.holdSeconds},
                           {"release", 0.5}, {"drop", 1.5}};
-  double time = 0;
-  double wallMicroseconds = 0;
   int steps = 0;
   double squeezeSum[2] = {0, 0};
   double carrySum[3] = {0, 0, 0};
   int squeezeSamples = 0;
-  btVector3 lastMomentum = momentum(*body);
   bool stopped = false;
   for (const Phase& phase : phases) {
-    const int count = stepsOf(phase.seconds);
+    const int count = stage.stepsOf(phase.seconds);
     for (int i = 1; i <= count; ++i) {
       const double s = double(i) / count;
       const std::string name = phase.name;
-      double opening = clamp.opening();
-      btTransform pose = clamp.handlePose();
+      double opening = stage.clamp().opening();
+      btTransform pose = stage.clamp().handlePose();
       if (name == "close") opening = open + (closed - open) * s;
       if (name == "lift") pose.setOrigin(handle.getOrigin() + btVector3(0, btScalar(settings.liftHeight * s), 0));
       if (name == "release") opening = closed + (open - closed) * s;
-      clamp.setPose(pose, opening);
-      const btVector3 pressure = pressureResultant(*body);
-      const auto start = std::chrono::steady_clock::now();
-      world.stepSimulation(dt, 1, dt);
-      wallMicroseconds += std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+      ClampForces forces;
+      const ClampSample sample = stage.step(pose, opening, name, forces);
       ++steps;
-      time += settings.timeStep;
-
-      const ClampForces forces = clamp.forces();
-      ClampSample sample;
-      sample.time = time;
-      sample.phase = name;
-      sample.opening = clamp.opening();
-      sample.grip = forces.grip;
-      sample.onUpperJaw = forces.onJaw[0];
-      sample.onLowerJaw = forces.onJaw[1];
-      sample.onBody = forces.onBody;
-      const btVector3 p = momentum(*body);
-      sample.bodyNetForce = toVec3((p - lastMomentum) / dt - world.getGravity() * body->getTotalMass());
-      sample.bodyPressure = toVec3(pressure);
-      lastMomentum = p;
-      sample.bodyLowest = lowest(*body);
-      sample.bodyCentreHeight = meanHeight(*body);
-      const auto b = boxes();
-      const std::vector<Point> nodes = nodePositions(*body);
-      for (int j = 0; j < 2; ++j) {
-        trackers[j].update(b[j], nodes, faces);
-        sample.crossed += trackers[j].metrics().crossed;
-        sample.jawInside = sample.jawInside || trackers[j].metrics().endsInside;
-      }
       run.crossed = sample.crossed;
       run.jawEverInside = run.jawEverInside || sample.jawInside;
-      if (name == "hold" && time > 0) {
+      if (name == "hold" && sample.time > 0) {
         // The hold's last second: the squeeze each jaw feels along the closing axis (world z).
-        const int last = stepsOf(1);
+        const int last = stage.stepsOf(1);
         if (i > count - last) {
           squeezeSum[0] += forces.onJaw[0].z;
           squeezeSum[1] += forces.onJaw[1].z;
@@ -204,14 +253,14 @@ ClampRun runClamp(const ClampRunSettings& settings) {
         if (i == count) run.liftedCentreHeight = sample.bodyCentreHeight;
       }
       run.samples.push_back(sample);
-      if (settings.observer && !settings.observer(world, clamp, sample)) {
+      if (settings.observer && !settings.observer(stage.world(), stage.clamp(), sample)) {
         stopped = true;
         break;
       }
     }
     if (stopped) break;
   }
-  run.droppedCentreHeight = meanHeight(*body);
+  run.droppedCentreHeight = stage.centreHeight();
   run.upperSqueeze = squeezeSamples > 0 ? squeezeSum[0] / squeezeSamples : 0;
   run.lowerSqueeze = squeezeSamples > 0 ? squeezeSum[1] / squeezeSamples : 0;
   if (squeezeSamples > 0) {
@@ -219,11 +268,7 @@ ClampRun runClamp(const ClampRunSettings& settings) {
     run.pressureCarries = carrySum[1] / squeezeSamples;
     run.momentumBalance = carrySum[2] / squeezeSamples;
   }
-  run.microsecondsPerStep = wallMicroseconds / steps;
-
-  world.removeSoftBody(body);
-  delete body;
-  world.removeRigidBody(&ground);
+  run.microsecondsPerStep = stage.wallMicroseconds() / steps;
   return run;
 }
 

@@ -89,12 +89,16 @@ bool HapticLoop::tick(double now) {
   const Vec3 toolPosition = toolKnown ? m_toolPosition : position;
   const Vec3 toolVelocity = toolKnown ? m_toolVelocity : velocity;
   const double toolAge = toolKnown ? now - m_toolTime : 0;
+  const Vec3 rendered = m_renderedForce;
   lock.unlock();
 
   CouplingSettings coupling = m_settings.coupling;
   coupling.maxForce = std::min(coupling.maxForce, m_device.limits().maxForce);
-  const Vec3 unclamped = couplingForceUnclamped(coupling, position, velocity, toolPosition, toolVelocity);
-  const Vec3 force = couplingForce(coupling, position, velocity, toolPosition, toolVelocity);
+  Vec3 unclamped = couplingForceUnclamped(coupling, position, velocity, toolPosition, toolVelocity);
+  if (!isFinite(unclamped)) unclamped = Vec3{};
+  unclamped += rendered;
+  const Real magnitude = length(unclamped);
+  const Vec3 force = magnitude > coupling.maxForce ? unclamped * (coupling.maxForce / magnitude) : unclamped;
   m_device.write(force);
   const double written = m_running ? clockNow() : now;
 
@@ -133,6 +137,14 @@ void HapticLoop::publishTool(const Vec3& position, const Vec3& velocity) {
   m_toolPosition = (position - m_settings.workspaceOffset) / m_settings.workspaceScale;
   m_toolVelocity = velocity / m_settings.workspaceScale;
   m_toolTime = now >= 0 ? now : std::max(m_snapshot.time, 0.0);
+}
+
+void HapticLoop::publishToolForce(const Vec3& force) {
+  if (!isFinite(force)) {
+    return;
+  }
+  std::lock_guard<std::mutex> lock(m_mutex);
+  m_renderedForce = force / m_settings.workspaceScale;
 }
 
 DeviceSnapshot HapticLoop::device() const {

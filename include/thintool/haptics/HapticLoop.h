@@ -4,8 +4,9 @@
 
 /// @file
 /// The haptic loop: at 1 kHz, in a thread of its own, it reads the device, computes the virtual
-/// coupling's force against the latest tool state the physics published, and writes it to the
-/// device. The physics thread steps at its own rate, publishes the tool's position and velocity
+/// coupling's force against the latest tool state the physics published (and adds a force the
+/// physics asks to render directly, for a tool that follows the device rigidly), and writes it to
+/// the device. The physics thread steps at its own rate, publishes the tool's position and velocity
 /// after each step, and applies the coupling's opposite force to the tool before the next.
 /// The same tick runs synchronously through tick(), for tests and for replays run as fast as
 /// possible, where the loop's clock is the tick count times the period.
@@ -73,6 +74,11 @@ class HapticLoop {
 
   /// Physics side: the tool's state after a step (world, m and m/s).
   void publishTool(const Vec3& position, const Vec3& velocity);
+  /// Physics side: a force the world put on a tool that follows the device rigidly (a kinematic
+  /// tool, such as the clamp, which no coupling separates from the hand), N, world. The device
+  /// feels it directly, divided by workspaceScale as the coupling's is, added to the coupling's
+  /// force and clamped with it, until the next call. A force that is not finite is ignored.
+  void publishToolForce(const Vec3& force);
   DeviceSnapshot device() const;
   /// The coupling's force on the tool (N, world) for the latest device state and the given tool
   /// state (world): the opposite of what the device feels, before the device's clamp, divided by
@@ -102,6 +108,7 @@ class HapticLoop {
   Vec3 m_toolVelocity;
   double m_toolTime = -1;
   Vec3 m_deviceForce;
+  Vec3 m_renderedForce;  // device frame, from publishToolForce
   // Rings over the latest ticks, preallocated: periods, latencies, ages of the tool state used.
   std::size_t m_ticks = 0;
   double m_lastTickStart = 0;
