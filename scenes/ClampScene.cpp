@@ -4,6 +4,7 @@
 
 #include "Metrics.h"
 #include "SoftBallScene.h"
+#include "ClampStage.h"
 #include "SoftWorld.h"
 
 #include <BulletSoftBody/btDefaultSoftBodySolver.h>
@@ -79,129 +80,100 @@ double lowest(const btSoftBody& body) {
   return low;
 }
 
-// The scene up to the grasp: the ground, the settled body, the open clamp at its hinge; then one
-// step at a time, each with its sample.
-class ClampStage {
- public:
-  ClampStage(ClampBody kind, bool friction, double timeStep, double squeeze) : m_timeStep(timeStep) {
-    btSoftRigidDynamicsWorld& world = m_soft.world;
-    btSoftBodyWorldInfo& info = world.getWorldInfo();
-    info.m_sparsesdf.setDefaultVoxelsz(btScalar(0.02));
-    info.m_sparsesdf.Reset();
-    world.addRigidBody(&m_ground);
-
-    // The baseline's soft material (shared/notes/baseline.md, variant E).
-    const Body shape = bodyOf(kind);
-    m_body = btSoftBodyHelpers::CreateEllipsoid(info, btVector3(0, shape.radii.y() + 0.3, 0), shape.radii,
-                                                shape.resolution);
-    m_body->m_materials[0]->m_kLST = 0.5;
-    m_body->m_cfg.kDF = 0.5;
-    m_body->m_cfg.kPR = 50;
-    m_body->m_cfg.kKHR = 1;
-    m_body->m_cfg.piterations = 10;
-    m_body->m_cfg.kDP = btScalar(1 - std::pow(0.95, 60 * timeStep));
-    m_body->setTotalMass(1);
-    m_body->getCollisionShape()->setMargin(btScalar(0.05));
-    world.addSoftBody(m_body);
-
-    const btScalar dt = btScalar(timeStep);
-    for (int i = 0; i < stepsOf(2); ++i) world.stepSimulation(dt, 1, dt);
-
-    m_restCentreHeight = meanHeight(*m_body);
-    const double radius = shape.radii.z();  // across the jaws
-    m_clampSettings.jawHalfExtents = {1.6, 0.01, 0.3};
-    m_clampSettings.jawOptions.response.friction.enabled = friction;
-    m_handle = btTransform(kHandleOrientation, btVector3(btScalar(-kHingeDistance), btScalar(m_restCentreHeight), 0));
-    m_clamp = std::make_unique<Clamp>(world, m_clampSettings, m_handle, m_clampSettings.maxOpening);
-    m_closed = 2 * std::atan((1 - squeeze) * radius / kHingeDistance);
-
-    m_faces = faceIndices(*m_body);
-    const auto b = boxes();
-    for (int j = 0; j < 2; ++j) m_trackers[j].start(b[j], nodePositions(*m_body), m_restCentreHeight);
-    m_lastMomentum = momentum(*m_body);
-  }
-
-  ~ClampStage() {
-    m_clamp.reset();
-    m_soft.world.removeSoftBody(m_body);
-    delete m_body;
-    m_soft.world.removeRigidBody(&m_ground);
-  }
-
-  ClampStage(const ClampStage&) = delete;
-  ClampStage& operator=(const ClampStage&) = delete;
-
-  int stepsOf(double seconds) const { return std::max(1, static_cast<int>(std::lround(seconds / m_timeStep))); }
-  double restCentreHeight() const { return m_restCentreHeight; }
-  const btTransform& handle() const { return m_handle; }  // where the clamp began, open
-  double open() const { return m_clampSettings.maxOpening; }
-  double closed() const { return m_closed; }
-  Clamp& clamp() { return *m_clamp; }
-  const btSoftRigidDynamicsWorld& world() const { return m_soft.world; }
-  double centreHeight() const { return meanHeight(*m_body); }
-  double wallMicroseconds() const { return m_wallMicroseconds; }
-
-  // Sets the clamp, steps the world once, and samples it.
-  ClampSample step(const btTransform& pose, double opening, const std::string& phase, ClampForces& forces) {
-    m_clamp->setPose(pose, opening);
-    const btVector3 pressure = pressureResultant(*m_body);
-    const btScalar dt = btScalar(m_timeStep);
-    const auto start = std::chrono::steady_clock::now();
-    m_soft.world.stepSimulation(dt, 1, dt);
-    m_wallMicroseconds += std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
-    m_time += m_timeStep;
-
-    forces = m_clamp->forces();
-    ClampSample sample;
-    sample.time = m_time;
-    sample.phase = phase;
-    sample.opening = m_clamp->opening();
-    sample.grip = forces.grip;
-    sample.onUpperJaw = forces.onJaw[0];
-    sample.onLowerJaw = forces.onJaw[1];
-    sample.onBody = forces.onBody;
-    const btVector3 p = momentum(*m_body);
-    sample.bodyNetForce = toVec3((p - m_lastMomentum) / dt - m_soft.world.getGravity() * m_body->getTotalMass());
-    sample.bodyPressure = toVec3(pressure);
-    m_lastMomentum = p;
-    sample.bodyLowest = lowest(*m_body);
-    sample.bodyCentreHeight = meanHeight(*m_body);
-    const auto b = boxes();
-    const std::vector<Point> nodes = nodePositions(*m_body);
-    for (int j = 0; j < 2; ++j) {
-      m_trackers[j].update(b[j], nodes, m_faces);
-      sample.crossed += m_trackers[j].metrics().crossed;
-      sample.jawInside = sample.jawInside || m_trackers[j].metrics().endsInside;
-    }
-    return sample;
-  }
-
- private:
-  std::array<ToolBox, 2> boxes() {
-    return std::array<ToolBox, 2>{
-        jawBox(m_clamp->jawBody(0).getWorldTransform(), m_clampSettings.jawHalfExtents, false),
-        jawBox(m_clamp->jawBody(1).getWorldTransform(), m_clampSettings.jawHalfExtents, true)};
-  }
-
-  double m_timeStep;
-  SoftWorld m_soft;
-  btBoxShape m_groundShape{btVector3(20, 1, 20)};
-  btDefaultMotionState m_groundMotion{btTransform(btQuaternion::getIdentity(), btVector3(0, -1, 0))};
-  btRigidBody m_ground{btRigidBody::btRigidBodyConstructionInfo(0, &m_groundMotion, &m_groundShape)};
-  btSoftBody* m_body = nullptr;
-  double m_restCentreHeight = 0;
-  ClampSettings m_clampSettings;
-  btTransform m_handle;
-  std::unique_ptr<Clamp> m_clamp;
-  double m_closed = 0;
-  std::vector<std::array<int, 3>> m_faces;
-  std::array<CrossingTracker, 2> m_trackers;
-  btVector3 m_lastMomentum{0, 0, 0};
-  double m_time = 0;
-  double m_wallMicroseconds = 0;
-};
-
 }  // namespace
+
+ClampStage::ClampStage(ClampBody kind, bool friction, double timeStep, double squeeze) : m_timeStep(timeStep) {
+  btSoftRigidDynamicsWorld& world = m_soft.world;
+  btSoftBodyWorldInfo& info = world.getWorldInfo();
+  info.m_sparsesdf.setDefaultVoxelsz(btScalar(0.02));
+  info.m_sparsesdf.Reset();
+  world.addRigidBody(&m_ground);
+
+  // The baseline's soft material (shared/notes/baseline.md, variant E).
+  const Body shape = bodyOf(kind);
+  m_body = btSoftBodyHelpers::CreateEllipsoid(info, btVector3(0, shape.radii.y() + 0.3, 0), shape.radii,
+                                              shape.resolution);
+  m_body->m_materials[0]->m_kLST = 0.5;
+  m_body->m_cfg.kDF = 0.5;
+  m_body->m_cfg.kPR = 50;
+  m_body->m_cfg.kKHR = 1;
+  m_body->m_cfg.piterations = 10;
+  m_body->m_cfg.kDP = btScalar(1 - std::pow(0.95, 60 * timeStep));
+  m_body->setTotalMass(1);
+  m_body->getCollisionShape()->setMargin(btScalar(0.05));
+  world.addSoftBody(m_body);
+
+  const btScalar dt = btScalar(timeStep);
+  for (int i = 0; i < stepsOf(2); ++i) world.stepSimulation(dt, 1, dt);
+
+  m_restCentreHeight = meanHeight(*m_body);
+  const double radius = shape.radii.z();  // across the jaws
+  m_clampSettings.jawHalfExtents = {1.6, 0.01, 0.3};
+  m_clampSettings.jawOptions.response.friction.enabled = friction;
+  m_handle = btTransform(kHandleOrientation, btVector3(btScalar(-kHingeDistance), btScalar(m_restCentreHeight), 0));
+  m_clamp = std::make_unique<Clamp>(world, m_clampSettings, m_handle, m_clampSettings.maxOpening);
+  m_closed = 2 * std::atan((1 - squeeze) * radius / kHingeDistance);
+
+  m_faces = faceIndices(*m_body);
+  const auto b = boxes();
+  for (int j = 0; j < 2; ++j) m_trackers[j].start(b[j], nodePositions(*m_body), m_restCentreHeight);
+  m_lastMomentum = momentum(*m_body);
+}
+
+ClampStage::~ClampStage() {
+  m_clamp.reset();
+  m_soft.world.removeSoftBody(m_body);
+  delete m_body;
+  m_soft.world.removeRigidBody(&m_ground);
+}
+
+int ClampStage::stepsOf(double seconds) const {
+  return std::max(1, static_cast<int>(std::lround(seconds / m_timeStep)));
+}
+
+double ClampStage::bodyMass() const { return double(m_body->getTotalMass()); }
+
+double ClampStage::centreHeight() const { return meanHeight(*m_body); }
+
+ClampSample ClampStage::step(const btTransform& pose, double opening, const std::string& phase, ClampForces& forces) {
+  m_clamp->setPose(pose, opening);
+  const btVector3 pressure = pressureResultant(*m_body);
+  const btScalar dt = btScalar(m_timeStep);
+  const auto start = std::chrono::steady_clock::now();
+  m_soft.world.stepSimulation(dt, 1, dt);
+  m_wallMicroseconds += std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+  m_time += m_timeStep;
+
+  forces = m_clamp->forces();
+  ClampSample sample;
+  sample.time = m_time;
+  sample.phase = phase;
+  sample.opening = m_clamp->opening();
+  sample.grip = forces.grip;
+  sample.onUpperJaw = forces.onJaw[0];
+  sample.onLowerJaw = forces.onJaw[1];
+  sample.onBody = forces.onBody;
+  const btVector3 p = momentum(*m_body);
+  sample.bodyNetForce = toVec3((p - m_lastMomentum) / dt - m_soft.world.getGravity() * m_body->getTotalMass());
+  sample.bodyPressure = toVec3(pressure);
+  m_lastMomentum = p;
+  sample.bodyLowest = lowest(*m_body);
+  sample.bodyCentreHeight = meanHeight(*m_body);
+  const auto b = boxes();
+  const std::vector<Point> nodes = nodePositions(*m_body);
+  for (int j = 0; j < 2; ++j) {
+    m_trackers[j].update(b[j], nodes, m_faces);
+    sample.crossed += m_trackers[j].metrics().crossed;
+    sample.jawInside = sample.jawInside || m_trackers[j].metrics().endsInside;
+  }
+  return sample;
+}
+
+std::array<ToolBox, 2> ClampStage::boxes() {
+  return std::array<ToolBox, 2>{
+      jawBox(m_clamp->jawBody(0).getWorldTransform(), m_clampSettings.jawHalfExtents, false),
+      jawBox(m_clamp->jawBody(1).getWorldTransform(), m_clampSettings.jawHalfExtents, true)};
+}
 
 const char* clampBodyName(ClampBody body) { return body == ClampBody::Sphere ? "sphere" : "vessel"; }
 
