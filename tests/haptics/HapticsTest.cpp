@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -202,6 +204,29 @@ TEST(HapticLoop, ReplayedAsFastAsPossibleEndsWithTheRecording) {
   EXPECT_TRUE(loop.device().finished);
   EXPECT_EQ(length(device.lastForce()), 0) << "the device is released when the recording ends";
   EXPECT_NEAR(loop.statistics().rate, 1000, 1e-6);
+}
+
+TEST(HapticLoop, AToolForceIsRenderedScaledAddedToTheCouplingAndClamped) {
+  // A device held still at the origin; the tool, never published, sits on the device's point, so
+  // the coupling pulls nowhere and the device feels the rendered force alone.
+  ReplayDevice device({{0, {0, 0, 0}, 0}, {10, {0, 0, 0}, 0}});
+  HapticLoopSettings settings;
+  settings.workspaceScale = 20;
+  HapticLoop loop(device, settings);
+  ASSERT_TRUE(loop.tick(0));
+  EXPECT_EQ(length(device.lastForce()), 0);
+  loop.publishToolForce({0, -10, 2});  // N, world: a grasped body's weight and a sideways pull
+  ASSERT_TRUE(loop.tick(0.001));
+  EXPECT_NEAR(device.lastForce().x, 0, 1e-12);
+  EXPECT_NEAR(device.lastForce().y, -0.5, 1e-12) << "divided by the workspace's scale, as the coupling's is";
+  EXPECT_NEAR(device.lastForce().z, 0.1, 1e-12);
+  loop.publishToolForce({0, std::numeric_limits<Real>::quiet_NaN(), 0});
+  ASSERT_TRUE(loop.tick(0.002));
+  EXPECT_NEAR(device.lastForce().y, -0.5, 1e-12) << "a force that is not finite is ignored";
+  loop.publishToolForce({0, -1000, 0});
+  ASSERT_TRUE(loop.tick(0.003));
+  EXPECT_NEAR(device.lastForce().y, -8, 1e-12) << "clamped to the device's limit";
+  EXPECT_EQ(loop.statistics().clampedTicks, 1u);
 }
 
 }  // namespace
