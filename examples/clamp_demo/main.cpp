@@ -9,9 +9,18 @@
 //   clamp_demo [--out DIR]   writes DIR/clamp_demo_force.csv and, with gnuplot, DIR/clamp_demo_force.png
 //   clamp_demo --view [--vessel]             the sphere (or the vessel) grasped, in the viewer
 //   clamp_demo --screenshot FILE.png [--vessel]   the grasp at 3.5 s (held up), to a PNG
+//   clamp_demo --session [--vessel] [--replay FILE] [--out DIR]
+//       the clamp under a haptic device: the shipped grasp trajectory (or FILE) replayed through
+//       the 1 kHz haptic loop in lockstep; the hand feels the load the jaws carry. Writes
+//       DIR/clamp_session_<body>.csv and, with gnuplot, its plot.
 
 #include "ClampScene.h"
 #include "Plot.h"
+#ifdef THINTOOL_HAVE_HAPTICS
+#include "ClampSession.h"
+
+#include <thintool/haptics/ReplayDevice.h>
+#endif
 #ifdef THINTOOL_HAVE_VIEWER
 #include "Viewer.h"
 #endif
@@ -75,26 +84,108 @@ int view(ClampBody body, const std::string& screenshotPath) {
 }
 #endif
 
+#ifdef THINTOOL_HAVE_HAPTICS
+// The clamp under the hand, replayed: the table's row for the session and its trace.
+int session(ClampBody body, std::string trajectory, const std::string& outDir) {
+  if (trajectory.empty()) {
+    trajectory = std::string(THINTOOL_CLAMP_TRAJECTORIES) + "/grasp-" + clampBodyName(body) + ".csv";
+  }
+  std::unique_ptr<haptics::ReplayDevice> device;
+  try {
+    device = std::make_unique<haptics::ReplayDevice>(haptics::ReplayDevice::fromFile(trajectory));
+  } catch (const Error& error) {
+    std::fprintf(stderr, "clamp_demo: %s\n", error.what());
+    return 1;
+  }
+  ClampSessionSettings settings;
+  settings.body = body;
+  const ClampSessionResult result = runClampSession(settings, *device);
+  const std::string name = std::string("clamp_session_") + clampBodyName(body);
+  const std::string csv = outDir + "/" + name + ".csv";
+  std::ofstream out(csv);
+  if (!out) {
+    std::fprintf(stderr, "clamp_demo: cannot write %s\n", csv.c_str());
+    return 1;
+  }
+  out << "time,device_x,device_y,device_z,opening,body_centre_height,on_clamp_x,on_clamp_y,on_clamp_z,"
+         "device_force_x,device_force_y,device_force_z,body_net_force_y,body_pressure_y\n";
+  for (const ClampSessionSample& s : result.trace) {
+    out << s.time << ',' << s.device.x << ',' << s.device.y << ',' << s.device.z << ',' << s.opening << ','
+        << s.bodyCentreHeight << ',' << s.onClamp.x << ',' << s.onClamp.y << ',' << s.onClamp.z << ','
+        << s.deviceForce.x << ',' << s.deviceForce.y << ',' << s.deviceForce.z << ',' << s.bodyNetForce.y << ','
+        << s.bodyPressure.y << '\n';
+  }
+  out.close();
+  const haptics::LoopStatistics& loop = result.loop;
+  std::printf("%s, %s: %d physics steps at %.0f Hz, %.0f us each; haptic loop (lockstep): %zu ticks, clamped %zu; "
+              "crossed nodes %d, jaw inside: %s; rest height %.3f m, weight %.2f N\n",
+              clampBodyName(body), trajectory.c_str(), result.steps, 1 / settings.timeStep,
+              result.physicsMicrosecondsPerStep, loop.ticks, loop.clampedTicks, result.crossed,
+              result.jawEverInside ? "YES" : "no", result.restCentreHeight, result.bodyWeight);
+  const double scale = settings.loop.workspaceScale;
+  for (const ClampSessionHold& hold : findHolds(result.trace)) {
+    std::printf("device still %.2f-%.2f s: body at %.3f m; the jaws carry %.2f N down, the hand feels %.3f N "
+                "(x %.0f = %.2f N), peak to peak %.3f N; momentum balance %.2f N, of it the body's own pressure "
+                "%.2f N\n",
+                hold.from, hold.to, hold.bodyCentreHeight, -hold.onClamp.y, -hold.deviceForce.y, scale,
+                -hold.deviceForce.y * scale, hold.deviceForcePeakToPeak, hold.bodyNetForce.y, hold.bodyPressure.y);
+  }
+  const std::string script =
+      "set terminal pngcairo size 1000,560 font ',11'\n"
+      "set output '" + outDir + "/" + name + ".png'\n"
+      "set datafile separator ','\nset grid\nset key top right\nset xlabel 'time (s)'\n"
+      "set ylabel 'force (N)'\nset y2label 'body centre height (m)'\nset ytics nomirror\nset y2tics\n"
+      "set title 'Clamp under the hand (" + std::string(clampBodyName(body)) +
+      "): close, lift, hold, open; the hand feels the load the jaws carry'\n"
+      "plot '" + csv + "' using 1:(-$8) every ::1 with lines lw 2 title 'load the jaws carry, down (N)', "
+      "'' using 1:(-$11*" + std::to_string(scale) + ") every ::1 with lines lw 1 title 'device force x workspace scale, down (N)', "
+      "'' using 1:6 every ::1 axes x1y2 with lines lw 1 title 'body centre height (m)'\n";
+  std::string whyNot;
+  if (examples::runGnuplot(outDir + "/" + name + ".gp", script, whyNot)) {
+    std::printf("wrote %s and %s/%s.png\n", csv.c_str(), outDir.c_str(), name.c_str());
+  } else {
+    std::printf("wrote %s; no plot: %s\n", csv.c_str(), whyNot.c_str());
+  }
+  return result.crossed == 0 && !result.jawEverInside ? 0 : 1;
+}
+#endif
+
 }  // namespace
 
 int main(int argc, char** argv) {
   std::string outDir = ".";
   std::string screenshot;
   bool viewIt = false;
+  bool sessionMode = false;
+  std::string trajectory;
   ClampBody viewedBody = ClampBody::Sphere;
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--out") == 0 && i + 1 < argc) {
       outDir = argv[++i];
     } else if (std::strcmp(argv[i], "--screenshot") == 0 && i + 1 < argc) {
       screenshot = argv[++i];
+    } else if (std::strcmp(argv[i], "--session") == 0) {
+      sessionMode = true;
+    } else if (std::strcmp(argv[i], "--replay") == 0 && i + 1 < argc) {
+      trajectory = argv[++i];
     } else if (std::strcmp(argv[i], "--view") == 0) {
       viewIt = true;
     } else if (std::strcmp(argv[i], "--vessel") == 0) {
       viewedBody = ClampBody::Vessel;
     } else {
-      std::fprintf(stderr, "usage: clamp_demo [--out DIR] | --view [--vessel] | --screenshot FILE.png [--vessel]\n");
+      std::fprintf(stderr,
+                   "usage: clamp_demo [--out DIR] | --view [--vessel] | --screenshot FILE.png [--vessel] |\n"
+                   "       --session [--vessel] [--replay FILE] [--out DIR]\n");
       return 2;
     }
+  }
+  if (sessionMode || !trajectory.empty()) {
+#ifdef THINTOOL_HAVE_HAPTICS
+    return session(viewedBody, trajectory, outDir);
+#else
+    std::fprintf(stderr, "clamp_demo: built without the haptic layer\n");
+    return 2;
+#endif
   }
   if (viewIt || !screenshot.empty()) {
 #ifdef THINTOOL_HAVE_VIEWER
