@@ -9,10 +9,11 @@
 //   clamp_demo [--out DIR]   writes DIR/clamp_demo_force.csv and, with gnuplot, DIR/clamp_demo_force.png
 //   clamp_demo --view [--vessel]             the sphere (or the vessel) grasped, in the viewer
 //   clamp_demo --screenshot FILE.png [--vessel]   the grasp at 3.5 s (held up), to a PNG
-//   clamp_demo --session [--vessel] [--replay FILE] [--out DIR]
+//   clamp_demo --session [--vessel] [--replay FILE | --falcon FIRMWARE.bin] [--out DIR]
 //       the clamp under a haptic device: the shipped grasp trajectory (or FILE) replayed through
-//       the 1 kHz haptic loop in lockstep; the hand feels the load the jaws carry. Writes
-//       DIR/clamp_session_<body>.csv and, with gnuplot, its plot.
+//       the 1 kHz haptic loop in lockstep, or a Novint Falcon in real time (where built with
+//       libnifalcon); the hand feels the load the jaws carry. Writes DIR/clamp_session_<body>.csv
+//       and, with gnuplot, its plot.
 
 #include "ClampScene.h"
 #include "Plot.h"
@@ -20,6 +21,9 @@
 #include "ClampSession.h"
 
 #include <thintool/haptics/ReplayDevice.h>
+#endif
+#ifdef THINTOOL_HAVE_NIFALCON
+#include "FalconDevice.h"
 #endif
 #ifdef THINTOOL_HAVE_VIEWER
 #include "Viewer.h"
@@ -86,19 +90,30 @@ int view(ClampBody body, const std::string& screenshotPath) {
 
 #ifdef THINTOOL_HAVE_HAPTICS
 // The clamp under the hand, replayed: the table's row for the session and its trace.
-int session(ClampBody body, std::string trajectory, const std::string& outDir) {
+int session(ClampBody body, std::string trajectory, const std::string& firmware, const std::string& outDir) {
   if (trajectory.empty()) {
     trajectory = std::string(THINTOOL_CLAMP_TRAJECTORIES) + "/grasp-" + clampBodyName(body) + ".csv";
   }
-  std::unique_ptr<haptics::ReplayDevice> device;
+  ClampSessionSettings settings;
+  settings.body = body;
+  std::unique_ptr<haptics::Device> device;
   try {
-    device = std::make_unique<haptics::ReplayDevice>(haptics::ReplayDevice::fromFile(trajectory));
+    if (!firmware.empty()) {
+#ifdef THINTOOL_HAVE_NIFALCON
+      device = examples::openFalcon(0, firmware);
+      settings.realTime = true;
+      trajectory = device->name();
+#else
+      std::fprintf(stderr, "clamp_demo: built without libnifalcon; install it and reconfigure to use a Falcon\n");
+      return 2;
+#endif
+    } else {
+      device = std::make_unique<haptics::ReplayDevice>(haptics::ReplayDevice::fromFile(trajectory));
+    }
   } catch (const Error& error) {
     std::fprintf(stderr, "clamp_demo: %s\n", error.what());
     return 1;
   }
-  ClampSessionSettings settings;
-  settings.body = body;
   const ClampSessionResult result = runClampSession(settings, *device);
   const std::string name = std::string("clamp_session_") + clampBodyName(body);
   const std::string csv = outDir + "/" + name + ".csv";
@@ -117,10 +132,11 @@ int session(ClampBody body, std::string trajectory, const std::string& outDir) {
   }
   out.close();
   const haptics::LoopStatistics& loop = result.loop;
-  std::printf("%s, %s: %d physics steps at %.0f Hz, %.0f us each; haptic loop (lockstep): %zu ticks, clamped %zu; "
-              "crossed nodes %d, jaw inside: %s; rest height %.3f m, weight %.2f N\n",
+  std::printf("%s, %s: %d physics steps at %.0f Hz, %.0f us each; haptic loop (%s): %zu ticks, %.1f Hz, clamped "
+              "%zu; crossed nodes %d, jaw inside: %s; rest height %.3f m, weight %.2f N\n",
               clampBodyName(body), trajectory.c_str(), result.steps, 1 / settings.timeStep,
-              result.physicsMicrosecondsPerStep, loop.ticks, loop.clampedTicks, result.crossed,
+              result.physicsMicrosecondsPerStep, settings.realTime ? "real time, own thread" : "lockstep", loop.ticks,
+              loop.rate, loop.clampedTicks, result.crossed,
               result.jawEverInside ? "YES" : "no", result.restCentreHeight, result.bodyWeight);
   const double scale = settings.loop.workspaceScale;
   for (const ClampSessionHold& hold : findHolds(result.trace)) {
@@ -158,6 +174,7 @@ int main(int argc, char** argv) {
   bool viewIt = false;
   bool sessionMode = false;
   std::string trajectory;
+  std::string firmware;
   ClampBody viewedBody = ClampBody::Sphere;
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--out") == 0 && i + 1 < argc) {
@@ -168,6 +185,8 @@ int main(int argc, char** argv) {
       sessionMode = true;
     } else if (std::strcmp(argv[i], "--replay") == 0 && i + 1 < argc) {
       trajectory = argv[++i];
+    } else if (std::strcmp(argv[i], "--falcon") == 0 && i + 1 < argc) {
+      firmware = argv[++i];
     } else if (std::strcmp(argv[i], "--view") == 0) {
       viewIt = true;
     } else if (std::strcmp(argv[i], "--vessel") == 0) {
@@ -175,13 +194,13 @@ int main(int argc, char** argv) {
     } else {
       std::fprintf(stderr,
                    "usage: clamp_demo [--out DIR] | --view [--vessel] | --screenshot FILE.png [--vessel] |\n"
-                   "       --session [--vessel] [--replay FILE] [--out DIR]\n");
+                   "       --session [--vessel] [--replay FILE | --falcon FIRMWARE.bin] [--out DIR]\n");
       return 2;
     }
   }
-  if (sessionMode || !trajectory.empty()) {
+  if (sessionMode || !trajectory.empty() || !firmware.empty()) {
 #ifdef THINTOOL_HAVE_HAPTICS
-    return session(viewedBody, trajectory, outDir);
+    return session(viewedBody, trajectory, firmware, outDir);
 #else
     std::fprintf(stderr, "clamp_demo: built without the haptic layer\n");
     return 2;
