@@ -125,11 +125,11 @@ struct ToolStepReport {
   /// Force (N) and torque about the tool body's origin (N·m) the response put on the tool: the
   /// reaction of the soft nodes it moved, Σ m·Δx/dt².
   Wrench wrench;
-  /// Force (N) and torque about the tool body's origin (N·m) that the soft solver's holds put on
-  /// the tool (ResponseSettings::holdInSolver): the impulses Bullet's contact stage applied through
-  /// them over the step, divided by the step. The nodes' weight on a grasping jaw comes this way,
-  /// not through wrench. Measured in a world whose soft-body solver is a thintool::SoftBodySolver;
-  /// zero elsewhere.
+  /// Force (N) and torque about the tool body's origin (N·m) that the soft solver's stage put on
+  /// the tool: the impulses Bullet's contact stage applied through the tool's holds
+  /// (ResponseSettings::holdInSolver), and the velocity changes of the nodes the last word moved,
+  /// over the step. Most of a grasped body's weight reaches a jaw this way, not through wrench.
+  /// Measured in a world whose soft-body solver is a thintool::SoftBodySolver; zero elsewhere.
   Wrench holdWrench;
   /// The tissue's force on the tool by the force model (Hunt–Crossley by default).
   ToolForce contactForce;
