@@ -86,6 +86,7 @@ ClampSessionResult runClampSession(const ClampSessionSettings& settings, haptics
     result.trace.push_back(out);
     result.crossed = sample.crossed;
     result.jawEverInside = result.jawEverInside || sample.jawInside;
+    if (settings.observer && !settings.observer(stage.world(), stage.clamp(), out, loop)) break;
     if (settings.realTime) {
       next += period;
       std::this_thread::sleep_until(next);

@@ -16,9 +16,12 @@
 #include <thintool/haptics/ClampMapping.h>
 #include <thintool/haptics/HapticLoop.h>
 
+#include <functional>
 #include <vector>
 
 namespace thintool::scenes {
+
+struct ClampSessionSample;
 
 struct ClampSessionSettings {
   ClampBody body = ClampBody::Sphere;
@@ -30,6 +33,10 @@ struct ClampSessionSettings {
   /// The device's centre is the open clamp at its hinge; 20 world metres per device metre (a 5 cm
   /// lift at the grip lifts the clamp 1 m); pushing the grip away closes it, 30 rad per metre.
   haptics::ClampMapping mapping = defaultMapping();
+
+  /// Called after every step (a viewer draws the world there); returning false ends the session.
+  std::function<bool(const btSoftRigidDynamicsWorld&, Clamp&, const ClampSessionSample&, const haptics::HapticLoop&)>
+      observer;
 
   static haptics::HapticLoopSettings defaultLoop();
   static haptics::ClampMapping defaultMapping();

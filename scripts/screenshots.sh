@@ -10,3 +10,4 @@ run build/examples/plate_into_ball/plate_into_ball --tool needle --screenshot do
 run build/examples/plate_into_ball/plate_into_ball --stock --screenshot docs/viewer-plate-stock.png --after 60
 run build/examples/clamp_demo/clamp_demo --screenshot docs/viewer-clamp.png
 run build/examples/clamp_demo/clamp_demo --vessel --screenshot docs/viewer-clamp-vessel.png
+run build/examples/clamp_demo/clamp_demo --session --vessel --screenshot docs/viewer-clamp-session.png

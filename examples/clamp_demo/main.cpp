@@ -9,13 +9,16 @@
 //   clamp_demo [--out DIR]   writes DIR/clamp_demo_force.csv and, with gnuplot, DIR/clamp_demo_force.png
 //   clamp_demo --view [--vessel]             the sphere (or the vessel) grasped, in the viewer
 //   clamp_demo --screenshot FILE.png [--vessel]   the grasp at 3.5 s (held up), to a PNG
-//   clamp_demo --session [--vessel] [--replay FILE | --falcon FIRMWARE.bin] [--out DIR]
+//   clamp_demo --session [--vessel] [--replay FILE | --falcon FIRMWARE.bin] [--out DIR | --view | --screenshot F.png]
 //       the clamp under a haptic device: the shipped grasp trajectory (or FILE) replayed through
 //       the 1 kHz haptic loop in lockstep, or a Novint Falcon in real time (where built with
 //       libnifalcon); the hand feels the load the jaws carry. Writes DIR/clamp_session_<body>.csv
-//       and, with gnuplot, its plot.
+//       and, with gnuplot, its plot; or shows it in the viewer (a replay then runs in real time),
+//       the load fed back as an arrow, or writes its frame at 3.5 s to a PNG.
 
 #include "ClampScene.h"
+
+#include <BulletDynamics/Dynamics/btRigidBody.h>
 #include "Plot.h"
 #ifdef THINTOOL_HAVE_HAPTICS
 #include "ClampSession.h"
@@ -33,6 +36,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <functional>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -90,12 +94,19 @@ int view(ClampBody body, const std::string& screenshotPath) {
 
 #ifdef THINTOOL_HAVE_HAPTICS
 // The clamp under the hand, replayed: the table's row for the session and its trace.
-int session(ClampBody body, std::string trajectory, const std::string& firmware, const std::string& outDir) {
+using SessionObserver = std::function<bool(const btSoftRigidDynamicsWorld&, Clamp&, const ClampSessionSample&,
+                                            const haptics::HapticLoop&)>;
+
+// observer, when set, watches every step, and a replay then runs in real time.
+int session(ClampBody body, std::string trajectory, const std::string& firmware, const std::string& outDir,
+            const SessionObserver& observer = nullptr) {
   if (trajectory.empty()) {
     trajectory = std::string(THINTOOL_CLAMP_TRAJECTORIES) + "/grasp-" + clampBodyName(body) + ".csv";
   }
   ClampSessionSettings settings;
   settings.body = body;
+  settings.observer = observer;
+  settings.realTime = static_cast<bool>(observer);
   std::unique_ptr<haptics::Device> device;
   try {
     if (!firmware.empty()) {
@@ -115,6 +126,9 @@ int session(ClampBody body, std::string trajectory, const std::string& firmware,
     return 1;
   }
   const ClampSessionResult result = runClampSession(settings, *device);
+  if (observer) {
+    return result.crossed == 0 && !result.jawEverInside ? 0 : 1;  // watched, not measured
+  }
   const std::string name = std::string("clamp_session_") + clampBodyName(body);
   const std::string csv = outDir + "/" + name + ".csv";
   std::ofstream out(csv);
@@ -166,6 +180,61 @@ int session(ClampBody body, std::string trajectory, const std::string& firmware,
 }
 #endif
 
+#if defined(THINTOOL_HAVE_HAPTICS) && defined(THINTOOL_HAVE_VIEWER)
+// A session in the viewer, replayed in real time or on a Falcon: the grasp, the load the hand is
+// given as an arrow from between the jaws (0.1 m per newton), the loop's rate and the forces in
+// the panel; or the frame at 3.5 s (held up) written to screenshotPath.
+int viewSession(ClampBody body, const std::string& trajectory, const std::string& firmware,
+                const std::string& screenshotPath) {
+  viewer::ViewerSettings settings;
+  settings.visible = screenshotPath.empty();
+  settings.title = "ThinTool: clamp under the hand";
+  std::unique_ptr<viewer::Viewer> window;
+  try {
+    window = std::make_unique<viewer::Viewer>(settings);
+  } catch (const std::runtime_error& error) {
+    std::fprintf(stderr, "%s\n", error.what());
+    return 1;
+  }
+  window->camera().target = btVector3(0, 1.2f, 0);
+  window->camera().distance = 6;
+  bool written = false;
+  double loopRate = 0;
+  int steps = 0;
+  const SessionObserver observer = [&](const btSoftRigidDynamicsWorld& world, Clamp& clamp,
+                                       const ClampSessionSample& sample, const haptics::HapticLoop& loop) {
+    if (steps++ % 30 == 0) loopRate = loop.statistics().rate;  // twice a second: it sorts the loop's records
+    viewer::Overlay overlay;
+    overlay.tools = {&clamp.jaw(0), &clamp.jaw(1)};
+    const btVector3 between =
+        (clamp.jawBody(0).getWorldTransform().getOrigin() + clamp.jawBody(1).getWorldTransform().getOrigin()) / 2;
+    overlay.arrows.push_back({between, between + toBt(sample.onClamp) * btScalar(0.1)});
+    char line[160];
+    std::snprintf(line, sizeof line, "%s: t %.2f s, opening %.2f rad, body at %.2f m", clampBodyName(body),
+                  sample.time, sample.opening, sample.bodyCentreHeight);
+    overlay.panelLines.emplace_back(line);
+    std::snprintf(line, sizeof line, "haptic loop %.0f Hz; the hand feels %.3f N, the jaws carry %.2f N",
+                  loopRate, length(sample.deviceForce), length(sample.onClamp));
+    overlay.panelLines.emplace_back(line);
+    if (!screenshotPath.empty()) {
+      if (sample.time < 3.5) return true;
+      written = window->renderToFile(world, overlay, screenshotPath);
+      return false;
+    }
+    return window->frame(world, overlay);
+  };
+  const int status = session(body, trajectory, firmware, ".", observer);
+  if (!screenshotPath.empty()) {
+    if (!written) {
+      std::fprintf(stderr, "clamp_demo: cannot write %s\n", screenshotPath.c_str());
+      return 1;
+    }
+    std::printf("wrote %s\n", screenshotPath.c_str());
+  }
+  return status;
+}
+#endif
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -194,12 +263,21 @@ int main(int argc, char** argv) {
     } else {
       std::fprintf(stderr,
                    "usage: clamp_demo [--out DIR] | --view [--vessel] | --screenshot FILE.png [--vessel] |\n"
-                   "       --session [--vessel] [--replay FILE | --falcon FIRMWARE.bin] [--out DIR]\n");
+                   "       --session [--vessel] [--replay FILE | --falcon FIRMWARE.bin] [--out DIR | --view |\n"
+                   "                 --screenshot FILE.png]\n");
       return 2;
     }
   }
   if (sessionMode || !trajectory.empty() || !firmware.empty()) {
 #ifdef THINTOOL_HAVE_HAPTICS
+    if (viewIt || !screenshot.empty()) {
+#ifdef THINTOOL_HAVE_VIEWER
+      return viewSession(viewedBody, trajectory, firmware, screenshot);
+#else
+      std::fprintf(stderr, "clamp_demo: built without the viewer\n");
+      return 2;
+#endif
+    }
     return session(viewedBody, trajectory, firmware, outDir);
 #else
     std::fprintf(stderr, "clamp_demo: built without the haptic layer\n");

@@ -356,6 +356,15 @@ void Viewer::drawWorld(const btSoftRigidDynamicsWorld& world, const Overlay& ove
     glEnd();
     glLineWidth(1);
   }
+  glLineWidth(4);
+  glColor3ub(Palette::arrow[0], Palette::arrow[1], Palette::arrow[2]);
+  glBegin(GL_LINES);
+  for (const auto& arrow : overlay.arrows) {
+    vertex(arrow[0]);
+    vertex(arrow[1]);
+  }
+  glEnd();
+  glLineWidth(1);
   glEnable(GL_DEPTH_TEST);
 }
 

@@ -53,12 +53,16 @@ struct Palette {
   static constexpr std::array<unsigned char, 3> tool{70, 120, 200};
   static constexpr std::array<unsigned char, 3> ground{150, 150, 140};
   static constexpr std::array<unsigned char, 3> background{235, 238, 242};
+  static constexpr std::array<unsigned char, 3> arrow{200, 40, 160};
 };
 
 /// One frame's content besides the world: the panel's lines and the tools to mark.
 struct Overlay {
   std::vector<std::string> panelLines;
   std::vector<Tool*> tools;  ///< their nodes and forces are drawn
+  /// Lines drawn over the scene in Palette::arrow, from the first point to the second (world, m):
+  /// a force fed back to a device, say.
+  std::vector<std::array<btVector3, 2>> arrows;
 };
 
 class Viewer {

@@ -6,6 +6,11 @@
 // the tool, the soft body's where it projects a soft face turned towards it.
 
 #include "ClampScene.h"
+#ifdef THINTOOL_HAVE_HAPTICS
+#include "ClampSession.h"
+
+#include <thintool/haptics/ReplayDevice.h>
+#endif
 #include "SoftBallScene.h"
 #include "Viewer.h"
 
@@ -169,6 +174,40 @@ TEST(ClampScene, RendersTheJawsAndTheGraspedBodyWhereTheyAre) {
   ASSERT_TRUE(viewer.camera().project(bodyCentre + btVector3(0, 0.85f, 0), image.width, image.height, x, y));
   EXPECT_TRUE(colourNear(image, x, y, Palette::softBody)) << "no soft-body colour at " << x << ", " << y;
 }
+
+#ifdef THINTOOL_HAVE_HAPTICS
+TEST(ClampSession, RendersTheLoadFedBackAsAnArrow) {
+  ViewerSettings viewerSettings;
+  viewerSettings.visible = false;
+  Viewer viewer(viewerSettings);
+  viewer.camera().target = btVector3(0, 1.2f, 0);
+  viewer.camera().distance = 6;
+  Image image;
+  btVector3 arrowMiddle;
+  scenes::ClampSessionSettings session;
+  session.observer = [&](const btSoftRigidDynamicsWorld& world, Clamp& clamp, const scenes::ClampSessionSample& sample,
+                         const haptics::HapticLoop&) {
+    if (sample.time < 3.5) return true;  // lifted and held
+    Overlay overlay;
+    overlay.tools = {&clamp.jaw(0), &clamp.jaw(1)};
+    const btVector3 start(-0.7f, btScalar(sample.bodyCentreHeight), 1.2f);  // in front of the grasp
+    overlay.arrows.push_back({start, start + toBt(sample.onClamp) * btScalar(0.1)});
+    arrowMiddle = start + toBt(sample.onClamp) * btScalar(0.05);
+    viewer.render(world, overlay);
+    EXPECT_TRUE(viewer.screenshot("viewer_clamp_session.png"));
+    image = load("viewer_clamp_session.png");
+    return false;
+  };
+  haptics::ReplayDevice device =
+      haptics::ReplayDevice::fromFile(std::string(THINTOOL_CLAMP_TRAJECTORIES) + "/grasp-sphere.csv");
+  const scenes::ClampSessionResult result = scenes::runClampSession(session, device);
+  ASSERT_FALSE(image.rgb.empty());
+  EXPECT_LT(result.trace.back().time, 3.6) << "the observer ended the session";
+  float x = 0, y = 0;
+  ASSERT_TRUE(viewer.camera().project(arrowMiddle, image.width, image.height, x, y));
+  EXPECT_TRUE(colourNear(image, x, y, Palette::arrow)) << "no arrow colour at " << x << ", " << y;
+}
+#endif
 
 }  // namespace
 }  // namespace thintool::viewer
