@@ -106,5 +106,68 @@ TEST(MultiBodyTool, AFingerLinkPressedIntoABallKeepsItsNodesOut) {
   world.removeRigidBody(&ground);
 }
 
+// The load read-back in the soft multibody world: a cloth laid on a multibody's link, held still by
+// its motor; once the cloth rests, the link's report carries its weight.
+TEST(MultiBodyTool, ALinkCarriesTheWeightOfAClothRestingOnIt) {
+  CollisionConfiguration configuration;
+  btCollisionDispatcher dispatcher(&configuration);
+  btDbvtBroadphase broadphase;
+  btMultiBodyConstraintSolver solver;
+  SoftBodySolver softSolver(configuration);
+  btSoftMultiBodyDynamicsWorld world(&dispatcher, &broadphase, &solver, &configuration, &softSolver);
+  world.setGravity(btVector3(0, -10, 0));
+  world.getWorldInfo().m_gravity = btVector3(0, -10, 0);
+  world.getWorldInfo().m_sparsesdf.Initialize();
+
+  btMultiBody platform(1, 0, btVector3(0, 0, 0), true, false);
+  platform.setBasePos(btVector3(0, 0.5, 0));
+  btBoxShape plateShape(btVector3(0.5, 0.01, 0.5));
+  btVector3 inertia;
+  plateShape.calculateLocalInertia(5, inertia);
+  platform.setupPrismatic(0, 5, inertia, -1, btQuaternion::getIdentity(), btVector3(0, -1, 0), btVector3(0, 0, 0),
+                          btVector3(0, 0, 0), true);
+  platform.finalizeMultiDof();
+  world.addMultiBody(&platform);
+  btMultiBodyLinkCollider collider(&platform, 0);
+  collider.setCollisionShape(&plateShape);
+  platform.getLink(0).m_collider = &collider;
+  btAlignedObjectArray<btQuaternion> worldToLocal;
+  btAlignedObjectArray<btVector3> localOrigin;
+  platform.updateCollisionObjectWorldTransforms(worldToLocal, localOrigin);
+  world.addCollisionObject(&collider, btBroadphaseProxy::DefaultFilter, btBroadphaseProxy::AllFilter);
+  btMultiBodyJointMotor motor(&platform, 0, 0, btScalar(1000));  // holds the link still
+  world.addMultiBodyConstraint(&motor);
+  Tool& tool = addTool(world, collider);
+
+  const btScalar h = btScalar(0.58);
+  btSoftBody* cloth = btSoftBodyHelpers::CreatePatch(world.getWorldInfo(), btVector3(-0.4f, h, -0.4f),
+                                                     btVector3(0.4f, h, -0.4f), btVector3(-0.4f, h, 0.4f),
+                                                     btVector3(0.4f, h, 0.4f), 9, 9, 0, true);
+  cloth->getCollisionShape()->setMargin(btScalar(0.02));
+  cloth->setTotalMass(2);
+  world.addSoftBody(cloth);
+  const double weight = 2 * 10;
+  double carried = 0;
+  int steps = 0;
+  for (int i = 0; i < 240; ++i) {
+    world.stepSimulation(btScalar(1.0 / 120), 1, btScalar(1.0 / 120));
+    const ToolStepReport& report = tool.report();
+    ASSERT_TRUE(isFinite(report.holdWrench.force) && isFinite(report.wrench.force)) << "step " << i;
+    if (i >= 180) {
+      carried += report.wrench.force.y + report.holdWrench.force.y;
+      ++steps;
+    }
+  }
+  EXPECT_NEAR(carried / steps, -weight, 0.05 * weight) << "the cloth presses down on the link";
+  EXPECT_NEAR(collider.getWorldTransform().getOrigin().y(), 0.5, 0.01) << "the motor held the link";
+
+  world.removeSoftBody(cloth);
+  delete cloth;
+  removeTool(world, collider);
+  world.removeMultiBodyConstraint(&motor);
+  world.removeCollisionObject(&collider);
+  world.removeMultiBody(&platform);
+}
+
 }  // namespace
 }  // namespace thintool
