@@ -9,9 +9,11 @@
 //   clamp_demo [--out DIR]   writes DIR/clamp_demo_force.csv and, with gnuplot, DIR/clamp_demo_force.png
 //   clamp_demo --view [--vessel]             the sphere (or the vessel) grasped, in the viewer
 //   clamp_demo --screenshot FILE.png [--vessel]   the grasp at 3.5 s (held up), to a PNG
-//   clamp_demo --session [--vessel] [--replay FILE | --falcon FIRMWARE.bin] [--out DIR | --view | --screenshot F.png]
+//   clamp_demo --session [--vessel] [--replay FILE [--real-time] | --falcon FIRMWARE.bin]
+//                        [--out DIR | --view | --screenshot F.png]
 //       the clamp under a haptic device: the shipped grasp trajectory (or FILE) replayed through
-//       the 1 kHz haptic loop in lockstep, or a Novint Falcon in real time (where built with
+//       the 1 kHz haptic loop in lockstep (--real-time: the loop in its own thread, paced by the
+//       clock, as with a device), or a Novint Falcon in real time (where built with
 //       libnifalcon); the hand feels the load the jaws carry. Writes DIR/clamp_session_<body>.csv
 //       and, with gnuplot, its plot; or shows it in the viewer (a replay then runs in real time),
 //       the load fed back as an arrow, or writes its frame at 3.5 s to a PNG.
@@ -99,14 +101,14 @@ using SessionObserver = std::function<bool(const btSoftRigidDynamicsWorld&, Clam
 
 // observer, when set, watches every step, and a replay then runs in real time.
 int session(ClampBody body, std::string trajectory, const std::string& firmware, const std::string& outDir,
-            const SessionObserver& observer = nullptr) {
+            bool realTime, const SessionObserver& observer = nullptr) {
   if (trajectory.empty()) {
     trajectory = std::string(THINTOOL_CLAMP_TRAJECTORIES) + "/grasp-" + clampBodyName(body) + ".csv";
   }
   ClampSessionSettings settings;
   settings.body = body;
   settings.observer = observer;
-  settings.realTime = static_cast<bool>(observer);
+  settings.realTime = realTime || static_cast<bool>(observer);
   std::unique_ptr<haptics::Device> device;
   try {
     if (!firmware.empty()) {
@@ -146,11 +148,13 @@ int session(ClampBody body, std::string trajectory, const std::string& firmware,
   }
   out.close();
   const haptics::LoopStatistics& loop = result.loop;
-  std::printf("%s, %s: %d physics steps at %.0f Hz, %.0f us each; haptic loop (%s): %zu ticks, %.1f Hz, clamped "
-              "%zu; crossed nodes %d, jaw inside: %s; rest height %.3f m, weight %.2f N\n",
+  std::printf("%s, %s: %d physics steps at %.0f Hz, %.0f us each; haptic loop (%s): %zu ticks, %.1f Hz, period "
+              "p50 %.3f ms, p99 %.3f ms, jitter %.3f ms, read-to-write latency p50 %.1f us, p99 %.1f us, clamped %zu; "
+              "crossed nodes %d, jaw inside: %s; rest height %.3f m, weight %.2f N\n",
               clampBodyName(body), trajectory.c_str(), result.steps, 1 / settings.timeStep,
               result.physicsMicrosecondsPerStep, settings.realTime ? "real time, own thread" : "lockstep", loop.ticks,
-              loop.rate, loop.clampedTicks, result.crossed,
+              loop.rate, loop.periodP50 * 1e3, loop.periodP99 * 1e3, loop.jitter * 1e3, loop.latencyP50 * 1e6,
+              loop.latencyP99 * 1e6, loop.clampedTicks, result.crossed,
               result.jawEverInside ? "YES" : "no", result.restCentreHeight, result.bodyWeight);
   const double scale = settings.loop.workspaceScale;
   for (const ClampSessionHold& hold : findHolds(result.trace)) {
@@ -223,7 +227,7 @@ int viewSession(ClampBody body, const std::string& trajectory, const std::string
     }
     return window->frame(world, overlay);
   };
-  const int status = session(body, trajectory, firmware, ".", observer);
+  const int status = session(body, trajectory, firmware, ".", true, observer);
   if (!screenshotPath.empty()) {
     if (!written) {
       std::fprintf(stderr, "clamp_demo: cannot write %s\n", screenshotPath.c_str());
@@ -242,6 +246,7 @@ int main(int argc, char** argv) {
   std::string screenshot;
   bool viewIt = false;
   bool sessionMode = false;
+  bool realTime = false;
   std::string trajectory;
   std::string firmware;
   ClampBody viewedBody = ClampBody::Sphere;
@@ -254,6 +259,8 @@ int main(int argc, char** argv) {
       sessionMode = true;
     } else if (std::strcmp(argv[i], "--replay") == 0 && i + 1 < argc) {
       trajectory = argv[++i];
+    } else if (std::strcmp(argv[i], "--real-time") == 0) {
+      realTime = true;
     } else if (std::strcmp(argv[i], "--falcon") == 0 && i + 1 < argc) {
       firmware = argv[++i];
     } else if (std::strcmp(argv[i], "--view") == 0) {
@@ -263,7 +270,7 @@ int main(int argc, char** argv) {
     } else {
       std::fprintf(stderr,
                    "usage: clamp_demo [--out DIR] | --view [--vessel] | --screenshot FILE.png [--vessel] |\n"
-                   "       --session [--vessel] [--replay FILE | --falcon FIRMWARE.bin] [--out DIR | --view |\n"
+                   "       --session [--vessel] [--replay FILE [--real-time] | --falcon FIRMWARE.bin] [--out DIR | --view |\n"
                    "                 --screenshot FILE.png]\n");
       return 2;
     }
@@ -278,7 +285,7 @@ int main(int argc, char** argv) {
       return 2;
 #endif
     }
-    return session(viewedBody, trajectory, firmware, outDir);
+    return session(viewedBody, trajectory, firmware, outDir, realTime);
 #else
     std::fprintf(stderr, "clamp_demo: built without the haptic layer\n");
     return 2;
