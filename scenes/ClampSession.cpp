@@ -3,6 +3,7 @@
 #include "ClampSession.h"
 
 #include "ClampStage.h"
+#include "StillStretches.h"
 
 #include <algorithm>
 #include <chrono>
@@ -101,16 +102,13 @@ ClampSessionResult runClampSession(const ClampSessionSettings& settings, haptics
 
 std::vector<ClampSessionHold> findHolds(const std::vector<ClampSessionSample>& trace, double settle, double minimum) {
   std::vector<ClampSessionHold> holds;
-  auto measure = [&](std::size_t first, std::size_t last) {  // [first, last], the device still throughout
-    if (last <= first || trace[last].time - trace[first].time < settle + minimum) return;
+  forEachStillStretch(trace, settle, minimum, [&](std::size_t settled, std::size_t last) {
     ClampSessionHold hold;
+    hold.from = trace[settled].time;
+    hold.to = trace[last].time;
     double low = 1e300, high = 0;
-    int count = 0;
-    for (std::size_t i = first; i <= last; ++i) {
+    for (std::size_t i = settled; i <= last; ++i) {
       const ClampSessionSample& s = trace[i];
-      if (s.time < trace[first].time + settle) continue;
-      if (count == 0) hold.from = s.time;
-      hold.to = s.time;
       hold.bodyCentreHeight += s.bodyCentreHeight;
       hold.onClamp += s.onClamp;
       hold.deviceForce += s.deviceForce;
@@ -118,25 +116,16 @@ std::vector<ClampSessionHold> findHolds(const std::vector<ClampSessionSample>& t
       hold.bodyPressure += s.bodyPressure;
       low = std::min(low, length(s.deviceForce));
       high = std::max(high, length(s.deviceForce));
-      ++count;
     }
-    if (count == 0) return;
-    const double n = count;
-    hold.bodyCentreHeight /= n;
-    hold.onClamp = hold.onClamp / n;
-    hold.deviceForce = hold.deviceForce / n;
-    hold.bodyNetForce = hold.bodyNetForce / n;
-    hold.bodyPressure = hold.bodyPressure / n;
+    const double count = double(last - settled + 1);
+    hold.bodyCentreHeight /= count;
+    hold.onClamp = hold.onClamp / count;
+    hold.deviceForce = hold.deviceForce / count;
+    hold.bodyNetForce = hold.bodyNetForce / count;
+    hold.bodyPressure = hold.bodyPressure / count;
     hold.deviceForcePeakToPeak = high - low;
     holds.push_back(hold);
-  };
-  std::size_t first = 0;
-  for (std::size_t i = 1; i <= trace.size(); ++i) {
-    if (i == trace.size() || length(trace[i].device - trace[i - 1].device) > 1e-6) {
-      measure(first, i - 1);
-      first = i;
-    }
-  }
+  });
   return holds;
 }
 

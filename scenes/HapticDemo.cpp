@@ -2,6 +2,8 @@
 // Copyright (c) 2026 The ThinTool developers
 #include "HapticDemo.h"
 
+#include "StillStretches.h"
+
 #include <BulletSoftBody/btSoftBody.h>
 #include <BulletSoftBody/btSoftRigidDynamicsWorld.h>
 #include <btBulletDynamicsCommon.h>
@@ -36,35 +38,25 @@ ToolOptions HapticDemoSettings::defaultToolOptions() {
 
 std::vector<HapticHold> findHolds(const std::vector<HapticSample>& trace, double settle, double minimum) {
   std::vector<HapticHold> holds;
-  auto measure = [&](std::size_t first, std::size_t last) {  // [first, last], device still throughout
-    if (last <= first || trace[last].time - trace[first].time < settle + minimum) return;
+  forEachStillStretch(trace, settle, minimum, [&](std::size_t settled, std::size_t last) {
     HapticHold hold;
+    hold.from = trace[settled].time;
+    hold.to = trace[last].time;
     double low = 1e300, high = 0, sum = 0;
-    int count = 0;
     int touching = 0;
-    for (std::size_t i = first; i <= last; ++i) {
-      if (trace[i].time < trace[first].time + settle) continue;
+    for (std::size_t i = settled; i <= last; ++i) {
       touching += length(trace[i].contactForce) > 0 ? 1 : 0;
       const double force = length(trace[i].deviceForce);
       low = std::min(low, force);
       high = std::max(high, force);
       sum += force;
-      ++count;
-      if (count == 1) hold.from = trace[i].time;
-      hold.to = trace[i].time;
     }
-    if (count == 0 || 10 * touching < count) return;
+    const auto count = static_cast<int>(last - settled + 1);
+    if (10 * touching < count) return;
     hold.meanForce = sum / count;
     hold.peakToPeak = high - low;
     holds.push_back(hold);
-  };
-  std::size_t first = 0;
-  for (std::size_t i = 1; i <= trace.size(); ++i) {
-    if (i == trace.size() || length(trace[i].device - trace[i - 1].device) > 1e-6) {
-      measure(first, i - 1);
-      first = i;
-    }
-  }
+  });
   return holds;
 }
 
