@@ -49,21 +49,58 @@ using namespace thintool::scenes;
 namespace {
 
 #ifdef THINTOOL_HAVE_VIEWER
-// The grasp in the viewer: every step drawn, or the step at 3.5 s written to screenshotPath.
-int view(ClampBody body, const std::string& screenshotPath) {
-  viewer::ViewerSettings settings;
-  settings.visible = screenshotPath.empty();
-  settings.title = "ThinTool: clamp";
-  std::unique_ptr<viewer::Viewer> window;
-  try {
-    window = std::make_unique<viewer::Viewer>(settings);
-  } catch (const std::runtime_error& error) {
-    std::fprintf(stderr, "%s\n", error.what());
-    return 1;
+// The viewer over the clamp scene: every step drawn, or, for a screenshot, the step at 3.5 s (the
+// body lifted and held by then) written to a PNG.
+class ClampWindow {
+ public:
+  // Null, with the reason on stderr, where there is no display or OpenGL.
+  static std::unique_ptr<ClampWindow> open(const char* title, const std::string& screenshotPath) {
+    viewer::ViewerSettings settings;
+    settings.visible = screenshotPath.empty();
+    settings.title = title;
+    try {
+      return std::unique_ptr<ClampWindow>(new ClampWindow(settings, screenshotPath));
+    } catch (const std::runtime_error& error) {
+      std::fprintf(stderr, "%s\n", error.what());
+      return nullptr;
+    }
   }
-  window->camera().target = btVector3(0, 1.2f, 0);
-  window->camera().distance = 6;
-  bool written = false;
+
+  // Draws a step at time (s); false once the run should end (the window closed, the frame written).
+  bool show(const btSoftRigidDynamicsWorld& world, const viewer::Overlay& overlay, double time) {
+    if (m_screenshotPath.empty()) return m_window.frame(world, overlay);
+    if (time < 3.5) return true;
+    m_written = m_window.renderToFile(world, overlay, m_screenshotPath);
+    return false;
+  }
+
+  // The exit status once the run is over: 1 when a screenshot was asked for and not written.
+  int finish() const {
+    if (m_screenshotPath.empty()) return 0;
+    if (!m_written) {
+      std::fprintf(stderr, "clamp_demo: cannot write %s\n", m_screenshotPath.c_str());
+      return 1;
+    }
+    std::printf("wrote %s\n", m_screenshotPath.c_str());
+    return 0;
+  }
+
+ private:
+  ClampWindow(const viewer::ViewerSettings& settings, const std::string& screenshotPath)
+      : m_window(settings), m_screenshotPath(screenshotPath) {
+    m_window.camera().target = btVector3(0, 1.2f, 0);
+    m_window.camera().distance = 6;
+  }
+
+  viewer::Viewer m_window;
+  std::string m_screenshotPath;
+  bool m_written = false;
+};
+
+// The grasp in the viewer.
+int view(ClampBody body, const std::string& screenshotPath) {
+  const std::unique_ptr<ClampWindow> window = ClampWindow::open("ThinTool: clamp", screenshotPath);
+  if (!window) return 1;
   ClampRunSettings run;
   run.body = body;
   run.observer = [&](const btSoftRigidDynamicsWorld& world, Clamp& clamp, const ClampSample& sample) {
@@ -75,22 +112,10 @@ int view(ClampBody body, const std::string& screenshotPath) {
     overlay.panelLines.emplace_back(line);
     std::snprintf(line, sizeof line, "grip %.1f N, body %.2f m up", sample.grip, sample.bodyCentreHeight);
     overlay.panelLines.emplace_back(line);
-    if (!screenshotPath.empty()) {
-      if (sample.time < 3.5) return true;  // lifted and held by then
-      written = window->renderToFile(world, overlay, screenshotPath);
-      return false;
-    }
-    return window->frame(world, overlay);
+    return window->show(world, overlay, sample.time);
   };
   runClamp(run);
-  if (!screenshotPath.empty()) {
-    if (!written) {
-      std::fprintf(stderr, "clamp_demo: cannot write %s\n", screenshotPath.c_str());
-      return 1;
-    }
-    std::printf("wrote %s\n", screenshotPath.c_str());
-  }
-  return 0;
+  return window->finish();
 }
 #endif
 
@@ -190,19 +215,8 @@ int session(ClampBody body, std::string trajectory, const std::string& firmware,
 // the panel; or the frame at 3.5 s (held up) written to screenshotPath.
 int viewSession(ClampBody body, const std::string& trajectory, const std::string& firmware,
                 const std::string& screenshotPath) {
-  viewer::ViewerSettings settings;
-  settings.visible = screenshotPath.empty();
-  settings.title = "ThinTool: clamp under the hand";
-  std::unique_ptr<viewer::Viewer> window;
-  try {
-    window = std::make_unique<viewer::Viewer>(settings);
-  } catch (const std::runtime_error& error) {
-    std::fprintf(stderr, "%s\n", error.what());
-    return 1;
-  }
-  window->camera().target = btVector3(0, 1.2f, 0);
-  window->camera().distance = 6;
-  bool written = false;
+  const std::unique_ptr<ClampWindow> window = ClampWindow::open("ThinTool: clamp under the hand", screenshotPath);
+  if (!window) return 1;
   double loopRate = 0;
   int steps = 0;
   const SessionObserver observer = [&](const btSoftRigidDynamicsWorld& world, Clamp& clamp,
@@ -220,22 +234,10 @@ int viewSession(ClampBody body, const std::string& trajectory, const std::string
     std::snprintf(line, sizeof line, "haptic loop %.0f Hz; the hand feels %.3f N, the jaws carry %.2f N",
                   loopRate, length(sample.deviceForce), length(sample.onClamp));
     overlay.panelLines.emplace_back(line);
-    if (!screenshotPath.empty()) {
-      if (sample.time < 3.5) return true;
-      written = window->renderToFile(world, overlay, screenshotPath);
-      return false;
-    }
-    return window->frame(world, overlay);
+    return window->show(world, overlay, sample.time);
   };
   const int status = session(body, trajectory, firmware, ".", true, observer);
-  if (!screenshotPath.empty()) {
-    if (!written) {
-      std::fprintf(stderr, "clamp_demo: cannot write %s\n", screenshotPath.c_str());
-      return 1;
-    }
-    std::printf("wrote %s\n", screenshotPath.c_str());
-  }
-  return status;
+  return window->finish() != 0 ? 1 : status;
 }
 #endif
 
