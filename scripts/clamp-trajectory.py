@@ -8,6 +8,8 @@
 # (the lift: 5 cm at the grip, 1 m in the world), 30 rad per device metre of push.
 
 import math
+
+import device_trajectory
 import sys
 
 HINGE_DISTANCE = 2.3     # m, world, from the body's centre (scenes/ClampScene.cpp)
@@ -35,18 +37,4 @@ KEYS = [
 ]
 
 
-def pose(t):
-    for (t0, *a), (t1, *b) in zip(KEYS, KEYS[1:]):
-        if t0 <= t <= t1:
-            s = (t - t0) / (t1 - t0)
-            s = 0.5 - 0.5 * math.cos(math.pi * s)  # smooth start and stop
-            return [p + (q - p) * s for p, q in zip(a, b)]
-    return KEYS[-1][1:]
-
-
-print("time,x,y,z,buttons")
-rate = 200
-for i in range(int(KEYS[-1][0] * rate) + 1):
-    t = i / rate
-    x, y, z = pose(t)
-    print(f"{t:.3f},{x:.6f},{y:.6f},{z:.6f},0")
+device_trajectory.write(KEYS)

@@ -4,7 +4,7 @@
 # Hold, a slow press, a slide while pressed, a fast withdrawal, a quick second press, release.
 # Device y is up; the device's origin sits 15 cm (world) above the ball, 10 world cm per device cm.
 
-import math
+import device_trajectory
 
 # (time s, x, y, z) key poses; positions are eased between them.
 KEYS = [
@@ -22,18 +22,4 @@ KEYS = [
 ]
 
 
-def pose(t):
-    for (t0, *a), (t1, *b) in zip(KEYS, KEYS[1:]):
-        if t0 <= t <= t1:
-            s = (t - t0) / (t1 - t0)
-            s = 0.5 - 0.5 * math.cos(math.pi * s)  # smooth start and stop
-            return [p + (q - p) * s for p, q in zip(a, b)]
-    return KEYS[-1][1:]
-
-
-print("time,x,y,z,buttons")
-rate = 200
-for i in range(int(KEYS[-1][0] * rate) + 1):
-    t = i / rate
-    x, y, z = pose(t)
-    print(f"{t:.3f},{x:.6f},{y:.6f},{z:.6f},0")
+device_trajectory.write(KEYS)
