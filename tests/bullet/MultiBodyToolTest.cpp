@@ -32,16 +32,62 @@ double depthIn(const btConvexShape& shape, const btTransform& pose, const btVect
   return distance < 0 ? -double(distance) : 0;
 }
 
-TEST(MultiBodyTool, AFingerLinkPressedIntoABallKeepsItsNodesOut) {
+// A soft multibody world on ThinTool's configuration and solver, gravity 10 m/s² down.
+struct SoftMultiBodyWorld {
   CollisionConfiguration configuration;
-  btCollisionDispatcher dispatcher(&configuration);
+  btCollisionDispatcher dispatcher{&configuration};
   btDbvtBroadphase broadphase;
   btMultiBodyConstraintSolver solver;
-  SoftBodySolver softSolver(configuration);
-  btSoftMultiBodyDynamicsWorld world(&dispatcher, &broadphase, &solver, &configuration, &softSolver);
-  world.setGravity(btVector3(0, -10, 0));
-  world.getWorldInfo().m_gravity = btVector3(0, -10, 0);
-  world.getWorldInfo().m_sparsesdf.Initialize();
+  SoftBodySolver softSolver{configuration};
+  btSoftMultiBodyDynamicsWorld world{&dispatcher, &broadphase, &solver, &configuration, &softSolver};
+
+  SoftMultiBodyWorld() {
+    world.setGravity(btVector3(0, -10, 0));
+    world.getWorldInfo().m_gravity = btVector3(0, -10, 0);
+    world.getWorldInfo().m_sparsesdf.Initialize();
+  }
+};
+
+// A fixed base at basePosition and one prismatic link along -y of the given mass carrying a box,
+// driven by a velocity motor; added to the world, removed with it.
+struct PrismaticLink {
+  btMultiBody body;
+  btBoxShape shape;
+  btMultiBodyLinkCollider collider;
+  btMultiBodyJointMotor motor;
+  btSoftMultiBodyDynamicsWorld& world;
+
+  PrismaticLink(btSoftMultiBodyDynamicsWorld& w, const btVector3& basePosition, const btVector3& halfExtents,
+                btScalar mass, btScalar speed)
+      : body(1, 0, btVector3(0, 0, 0), true, false), shape(halfExtents), collider(&body, 0),
+        motor(&body, 0, speed, btScalar(1000)), world(w) {
+    body.setBasePos(basePosition);
+    btVector3 inertia;
+    shape.calculateLocalInertia(mass, inertia);
+    body.setupPrismatic(0, mass, inertia, -1, btQuaternion::getIdentity(), btVector3(0, -1, 0), btVector3(0, 0, 0),
+                        btVector3(0, 0, 0), true);
+    body.finalizeMultiDof();
+    world.addMultiBody(&body);
+    collider.setCollisionShape(&shape);
+    body.getLink(0).m_collider = &collider;
+    btAlignedObjectArray<btQuaternion> worldToLocal;
+    btAlignedObjectArray<btVector3> localOrigin;
+    body.updateCollisionObjectWorldTransforms(worldToLocal, localOrigin);
+    world.addCollisionObject(&collider, btBroadphaseProxy::DefaultFilter, btBroadphaseProxy::AllFilter);
+    world.addMultiBodyConstraint(&motor);
+  }
+  ~PrismaticLink() {
+    world.removeMultiBodyConstraint(&motor);
+    world.removeCollisionObject(&collider);
+    world.removeMultiBody(&body);
+  }
+  PrismaticLink(const PrismaticLink&) = delete;
+  PrismaticLink& operator=(const PrismaticLink&) = delete;
+};
+
+TEST(MultiBodyTool, AFingerLinkPressedIntoABallKeepsItsNodesOut) {
+  SoftMultiBodyWorld w;
+  btSoftMultiBodyDynamicsWorld& world = w.world;
 
   btBoxShape groundShape(btVector3(5, 0.5, 5));
   btRigidBody ground(btRigidBody::btRigidBodyConstructionInfo(0, nullptr, &groundShape));
@@ -57,27 +103,11 @@ TEST(MultiBodyTool, AFingerLinkPressedIntoABallKeepsItsNodesOut) {
   ball->setTotalMass(1);
   world.addSoftBody(ball);
 
-  // A fixed base 1.5 m up and one prismatic link along -y carrying a plate 2 cm thick.
-  btMultiBody finger(1, 0, btVector3(0, 0, 0), true, false);
-  finger.setBasePos(btVector3(0, 1.5, 0));
-  btBoxShape plateShape(btVector3(0.2, 0.01, 0.2));
-  btVector3 inertia;
-  plateShape.calculateLocalInertia(0.5, inertia);
-  finger.setupPrismatic(0, 0.5, inertia, -1, btQuaternion::getIdentity(), btVector3(0, -1, 0),
-                        btVector3(0, 0, 0), btVector3(0, 0, 0), true);
-  finger.finalizeMultiDof();
-  world.addMultiBody(&finger);
-  btMultiBodyLinkCollider collider(&finger, 0);
-  collider.setCollisionShape(&plateShape);
-  finger.getLink(0).m_collider = &collider;
-  btAlignedObjectArray<btQuaternion> worldToLocal;
-  btAlignedObjectArray<btVector3> localOrigin;
-  finger.updateCollisionObjectWorldTransforms(worldToLocal, localOrigin);
-  world.addCollisionObject(&collider, btBroadphaseProxy::DefaultFilter, btBroadphaseProxy::AllFilter);
-  // Down at 0.5 m/s, whatever the ball pushes back: the motor holds the speed.
-  btMultiBodyJointMotor motor(&finger, 0, btScalar(0.5), btScalar(1000));
-  world.addMultiBodyConstraint(&motor);
-
+  // A fixed base 1.5 m up and one prismatic link along -y carrying a plate 2 cm thick, driven down
+  // at 0.5 m/s whatever the ball pushes back: the motor holds the speed.
+  PrismaticLink finger(world, btVector3(0, 1.5, 0), btVector3(0.2, 0.01, 0.2), btScalar(0.5), btScalar(0.5));
+  btMultiBodyLinkCollider& collider = finger.collider;
+  const btBoxShape& plateShape = finger.shape;
   Tool& tool = addTool(world, collider);
   EXPECT_EQ(tool.rigidBody(), nullptr);
   int stepsWithContacts = 0;
@@ -98,9 +128,6 @@ TEST(MultiBodyTool, AFingerLinkPressedIntoABallKeepsItsNodesOut) {
   EXPECT_TRUE(tool.report().diagnostics.lastWord.ran);
 
   removeTool(world, collider);
-  world.removeMultiBodyConstraint(&motor);
-  world.removeCollisionObject(&collider);
-  world.removeMultiBody(&finger);
   world.removeSoftBody(ball);
   delete ball;
   world.removeRigidBody(&ground);
@@ -109,34 +136,11 @@ TEST(MultiBodyTool, AFingerLinkPressedIntoABallKeepsItsNodesOut) {
 // The load read-back in the soft multibody world: a cloth laid on a multibody's link, held still by
 // its motor; once the cloth rests, the link's report carries its weight.
 TEST(MultiBodyTool, ALinkCarriesTheWeightOfAClothRestingOnIt) {
-  CollisionConfiguration configuration;
-  btCollisionDispatcher dispatcher(&configuration);
-  btDbvtBroadphase broadphase;
-  btMultiBodyConstraintSolver solver;
-  SoftBodySolver softSolver(configuration);
-  btSoftMultiBodyDynamicsWorld world(&dispatcher, &broadphase, &solver, &configuration, &softSolver);
-  world.setGravity(btVector3(0, -10, 0));
-  world.getWorldInfo().m_gravity = btVector3(0, -10, 0);
-  world.getWorldInfo().m_sparsesdf.Initialize();
+  SoftMultiBodyWorld w;
+  btSoftMultiBodyDynamicsWorld& world = w.world;
 
-  btMultiBody platform(1, 0, btVector3(0, 0, 0), true, false);
-  platform.setBasePos(btVector3(0, 0.5, 0));
-  btBoxShape plateShape(btVector3(0.5, 0.01, 0.5));
-  btVector3 inertia;
-  plateShape.calculateLocalInertia(5, inertia);
-  platform.setupPrismatic(0, 5, inertia, -1, btQuaternion::getIdentity(), btVector3(0, -1, 0), btVector3(0, 0, 0),
-                          btVector3(0, 0, 0), true);
-  platform.finalizeMultiDof();
-  world.addMultiBody(&platform);
-  btMultiBodyLinkCollider collider(&platform, 0);
-  collider.setCollisionShape(&plateShape);
-  platform.getLink(0).m_collider = &collider;
-  btAlignedObjectArray<btQuaternion> worldToLocal;
-  btAlignedObjectArray<btVector3> localOrigin;
-  platform.updateCollisionObjectWorldTransforms(worldToLocal, localOrigin);
-  world.addCollisionObject(&collider, btBroadphaseProxy::DefaultFilter, btBroadphaseProxy::AllFilter);
-  btMultiBodyJointMotor motor(&platform, 0, 0, btScalar(1000));  // holds the link still
-  world.addMultiBodyConstraint(&motor);
+  PrismaticLink platform(world, btVector3(0, 0.5, 0), btVector3(0.5, 0.01, 0.5), 5, 0);  // the motor holds it
+  btMultiBodyLinkCollider& collider = platform.collider;
   Tool& tool = addTool(world, collider);
 
   const btScalar h = btScalar(0.58);
@@ -164,9 +168,6 @@ TEST(MultiBodyTool, ALinkCarriesTheWeightOfAClothRestingOnIt) {
   world.removeSoftBody(cloth);
   delete cloth;
   removeTool(world, collider);
-  world.removeMultiBodyConstraint(&motor);
-  world.removeCollisionObject(&collider);
-  world.removeMultiBody(&platform);
 }
 
 }  // namespace
