@@ -15,10 +15,10 @@
 /// nodes again (links, pressure, its own contacts): whatever the collision pass did, the soft
 /// solver has the last word on where a node ends the step. This one runs Bullet's own solve
 /// unchanged (for a body that tools hold in it, Bullet's stages one by one, so as to measure what
-/// the holds carried: ToolStepReport::holdWrench), then, for every tool of the configuration whose ToolOptions::separation is enabled,
-/// puts every soft node and face near the tool back on its side (response/Separation.h) and sets
-/// a moved node's velocity along its move to the faster of its own and the tool's (no bounce). A
-/// dynamic tool receives the moved nodes' reaction as impulses, unless its force model already
+/// the holds carried: ToolStepReport::holdWrench), then, for every tool of the configuration
+/// whose ToolOptions::separation is enabled, puts every soft node and face near the tool back on
+/// its side (response/Separation.h) and sets a moved node's velocity along its move to the faster
+/// of its own and the tool's (no bounce). A dynamic tool receives the moved nodes' reaction as impulses, unless its force model already
 /// reacts on it (ForceSettings::applyToDynamicTool). Soft bodies that ignore the tool
 /// (m_collisionDisabledObjects) are left alone. Last, the energy guard (EnergyGuardSettings)
 /// bounds the velocities of each soft body a tool's response moved in the step. Tool::report()
