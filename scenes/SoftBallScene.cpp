@@ -16,6 +16,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 namespace thintool::scenes {
@@ -238,8 +239,11 @@ SoftBallScene::SoftBallScene(const SceneSettings& settings) : m_settings(setting
   if (thinTool) {
     thintool::ToolOptions options = settings.toolOptions;
     options.swept = options.swept && settings.algorithm == Algorithm::ThinTool;
-    // The paper's algorithm as published has no last word (ToolOptions::paper()).
+    // The paper's algorithm as published has no last word and no skin regrowth (ToolOptions::paper()).
     options.separation.enabled = options.separation.enabled && settings.algorithm == Algorithm::ThinTool;
+    if (settings.algorithm == Algorithm::ThinToolPaper) {
+      options.skinGrowthSpeed = std::numeric_limits<thintool::Real>::infinity();
+    }
     try {
       m_thinTool = &thintool::addTool(*m_world, *m_tool, options);
     } catch (...) {

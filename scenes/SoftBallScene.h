@@ -63,7 +63,8 @@ struct SceneSettings {
   bool exactBallHull = false;
   double settleSeconds = 2;
   int substeps = 1;  ///< internal steps per timeStep: stepSimulation(timeStep, substeps, timeStep / substeps)
-  thintool::ToolOptions toolOptions;  ///< used when algorithm is ThinTool; ThinToolPaper turns swept and separation off
+  /// Used when algorithm is ThinTool; ThinToolPaper turns swept, separation and skin regrowth off.
+  thintool::ToolOptions toolOptions;
   double toolThickness = 0.02;  ///< m, along the tool's y axis (0 makes a tool of zero thickness)
   /// Where the scene is built (m): ground, ball and parked tool are placed relative to it.
   /// Coordinates far from 0 cost float precision.

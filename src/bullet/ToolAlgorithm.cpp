@@ -403,8 +403,9 @@ void ToolAlgorithm::respond(PieceStep& step) {
     response.friction.staticCoefficient = pairFriction(step.softBody, step.toolBody);
     response.friction.kineticCoefficient = response.friction.staticCoefficient;
   }
-  computeResponse(step.model, step.pose, step.previousPose, state.patch, state.contacts, step.skin, step.timeStep,
-                  response, m_tool.m_responseWorkspace, state.corrections, state.wrench);
+  computeResponse(step.model, step.pose, step.previousPose, state.patch, state.contacts, step.skin,
+                  m_tool.m_options.skinGrowthSpeed, step.timeStep, response, m_tool.m_responseWorkspace,
+                  state.corrections, state.wrench);
   state.previousPose = step.pose;
   state.hasPreviousPose = true;
 }

@@ -131,8 +131,8 @@ void applyFriction(const FrictionSettings& friction, const Pose& toolPose, const
 }  // namespace
 
 void computeResponse(const ToolModel& model, const Pose& toolPose, const Pose& previousToolPose,
-                     const SoftPatch& patch, const std::vector<Contact>& contacts, Real skin, Real dt,
-                     const ResponseSettings& settings, ResponseWorkspace& work,
+                     const SoftPatch& patch, const std::vector<Contact>& contacts, Real skin,
+                     Real skinGrowthSpeed, Real dt, const ResponseSettings& settings, ResponseWorkspace& work,
                      std::vector<NodeCorrection>& outCorrections, Wrench& outWrench) {
   THINTOOL_ASSERT(patch.consistent());
   outCorrections.clear();
@@ -165,8 +165,24 @@ void computeResponse(const ToolModel& model, const Pose& toolPose, const Pose& p
     return work.m_slot[vertex] == kInvalidIndex ? patch.positions[vertex] : work.m_positions[vertex];
   };
   auto movable = [&](Index vertex) { return patch.inverseMasses[vertex] > 0; };
+  // The skin a soft point keeps this step: all of it for a point that began the step beyond the
+  // skin; for one that began inside it, where it began plus skinGrowthSpeed·dt, so that the
+  // projection never throws it out faster than that.
+  const Real growth = skinGrowthSpeed * dt;
+  auto skinFrom = [&](const Vec3& startPosition) {
+    const Real start = outsideDistance(model.planes, previousToolPose.applyInverse(startPosition));
+    return std::min(skin, std::max(start, Real(0)) + growth);
+  };
+  work.m_contactSkinLeft.clear();
+  for (const Contact& contact : contacts) {
+    // A face's or an edge's contact point is wherever the tool meets it this step, not a point
+    // of the soft body that has a place at the start of the step: it keeps the whole skin.
+    const bool node = contact.kind == ContactKind::SoftNode;
+    work.m_contactSkinLeft.push_back(node ? skin - skinFrom(patch.previousPositions[contact.patchVertices[0]]) : 0);
+  }
+  // Signed distance in front of the contact's plane, moved back to the skin the point keeps.
   auto distanceOf = [&](const Contact& contact, const Vec3& position) {
-    return dot(contact.normal, position) + contact.offset;
+    return dot(contact.normal, position) + contact.offset + work.m_contactSkinLeft[&contact - contacts.data()];
   };
 
   if (settings.kind == ResponseKind::PaperForce) {
@@ -218,7 +234,8 @@ void computeResponse(const ToolModel& model, const Pose& toolPose, const Pose& p
         }
         Vec3 normal;
         const Real depth = depthBehindEntryFace(model, toolPose, previousToolPose, patch.previousPositions[vertex],
-                                                patch.positions[vertex], skin, normal);
+                                                patch.positions[vertex], skinFrom(patch.previousPositions[vertex]),
+                                                normal);
         if (!(depth > 0)) {
           continue;
         }
@@ -279,18 +296,19 @@ void computeResponse(const ToolModel& model, const Pose& toolPose, const Pose& p
       const Index vertex = correction.vertex;
       const Vec3 startLocal = previousToolPose.applyInverse(patch.previousPositions[vertex]);
       const Vec3 endLocal = toolPose.applyInverse(work.m_positions[vertex]);
+      const Real nodeSkin = skinFrom(patch.previousPositions[vertex]);
       Index entry = kInvalidIndex;
-      if (outsideDistance(model.planes, endLocal, &entry) < skin) {
+      if (outsideDistance(model.planes, endLocal, &entry) < nodeSkin) {
         outsideDistance(model.planes, startLocal, &entry);
-      } else if (model.planes[entry].signedDistance(startLocal) > skin) {
+      } else if (model.planes[entry].signedDistance(startLocal) > nodeSkin) {
         entry = kInvalidIndex;  // in front of the same face all along: the path misses the tool
       } else {
-        entry = planeMovedThrough(model, startLocal, endLocal, skin);
+        entry = planeMovedThrough(model, startLocal, endLocal, nodeSkin);
       }
       if (entry != kInvalidIndex) {
         const Plane& face = model.planes[entry];
         const Vec3 faceNormal = toolPose.applyToDirection(face.normal);
-        work.m_positions[vertex] += faceNormal * (skin - face.signedDistance(endLocal));
+        work.m_positions[vertex] += faceNormal * (nodeSkin - face.signedDistance(endLocal));
         correction.normal = faceNormal;
       }
     }

@@ -83,7 +83,7 @@ TEST(Assert, TheResponseChecksThePatchItIsGivenWhenTheLibraryWasBuiltWithChecks)
   ResponseWorkspace workspace;
   std::vector<NodeCorrection> corrections;
   Wrench wrench;
-  computeResponse(model, Pose{}, Pose{}, patch, {}, 0.001, 0.01, ResponseSettings{}, workspace, corrections, wrench);
+  computeResponse(model, Pose{}, Pose{}, patch, {}, 0.001, 1, 0.01, ResponseSettings{}, workspace, corrections, wrench);
   EXPECT_EQ(g_failure.count, libraryChecksAsserts() ? 1 : 0);
   if (libraryChecksAsserts()) {
     EXPECT_EQ(g_failure.condition, "patch.consistent()");

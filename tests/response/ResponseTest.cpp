@@ -4,11 +4,15 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 namespace thintool {
 namespace {
 
 constexpr Real kSkin = 0.001;
 constexpr Real kDt = 0.01;
+// Every point keeps the whole skin, wherever it began the step (ToolOptions::skinGrowthSpeed).
+constexpr Real kSkinGrowthSpeed = std::numeric_limits<Real>::infinity();
 
 // A 0.4 × 0.02 × 0.4 plate whose underside is at y = 0, and a soft patch made of given triangles.
 struct Fixture {
@@ -19,6 +23,7 @@ struct Fixture {
   ResponseWorkspace workspace;
   std::vector<NodeCorrection> corrections;
   Wrench wrench;
+  Real skinGrowthSpeed = kSkinGrowthSpeed;
 
   Fixture() {
     ToolModelSettings settings;
@@ -64,8 +69,8 @@ struct Fixture {
     contacts.push_back(c);
   }
   void respond(const ResponseSettings& settings = {}, const Pose* previous = nullptr) {
-    computeResponse(model, pose, previous != nullptr ? *previous : pose, patch, contacts, kSkin, kDt, settings,
-                    workspace, corrections, wrench);
+    computeResponse(model, pose, previous != nullptr ? *previous : pose, patch, contacts, kSkin, skinGrowthSpeed, kDt,
+                    settings, workspace, corrections, wrench);
   }
   Vec3 finalPosition(Index v) const {
     for (const NodeCorrection& c : corrections) {
@@ -159,6 +164,53 @@ Real frictionDrag(bool enabled, Real staticCoefficient, Real kineticCoefficient)
   f.respond(settings, &previous);
   EXPECT_NEAR(f.finalPosition(v).y, -kSkin, 1e-12) << "friction leaves the normal move alone";
   return f.finalPosition(v).x;
+}
+
+// A node that enters the plate's underside from start (y < 0) and is now at y = 0.002.
+Index enteringNode(Fixture& f, Real startY) {
+  const Vec3 start{0, startY, 0};
+  const Index v = f.vertex({0, 0.002, 0}, 2, &start);
+  Contact contact;
+  contact.kind = ContactKind::SoftNode;
+  contact.softNodeCount = 1;
+  contact.patchVertices = {v, kInvalidIndex, kInvalidIndex};
+  contact.barycentric = {1, 0, 0};
+  contact.normal = {0, -1, 0};
+  contact.offset = -kSkin;  // the underside moved down by the skin
+  f.contacts.push_back(contact);
+  return v;
+}
+
+TEST(Response, ANodeThatBeganInsideTheSkinIsPushedOutNoFasterThanTheGrowthSpeed) {
+  // It keeps where it began plus skinGrowthSpeed·dt of the skin, not all of it: pushed to the
+  // full skin it would leave the step at skin/dt, a kick the tool's motion does not explain.
+  Fixture f;
+  f.skinGrowthSpeed = 0.01;  // 0.1 mm in the step
+  const Index began = enteringNode(f, -0.0005);
+  const Index beyond = enteringNode(f, -0.005);
+  f.respond();
+  EXPECT_NEAR(f.finalPosition(began).y, -0.0006, 1e-12);
+  EXPECT_NEAR(f.finalPosition(beyond).y, -kSkin, 1e-12) << "a node from beyond the skin keeps all of it";
+
+  Fixture atOnce;  // an infinite growth speed keeps the whole skin for every node
+  const Index same = enteringNode(atOnce, -0.0005);
+  atOnce.respond();
+  EXPECT_NEAR(atOnce.finalPosition(same).y, -kSkin, 1e-12);
+}
+
+TEST(Response, AFaceContactKeepsTheWholeSkinWhereverItsNodesBegan) {
+  // The point where a tool meets a face moves over the face from step to step; it has no place
+  // at the start of the step to grow the skin from.
+  Fixture f;
+  f.skinGrowthSpeed = 0.01;
+  const Vec3 start{0, -0.0005, 0};
+  const Index a = f.vertex({-0.1, 0.003, -0.1}, 2, &start);
+  const Index b = f.vertex({0.1, 0.003, -0.1}, 2, &start);
+  const Index c = f.vertex({0, 0.003, 0.1}, 2, &start);
+  f.contact(f.face(a, c, b), {0, -1, 0}, {Real(1) / 3, Real(1) / 3, Real(1) / 3}, 0.003);
+  f.respond();
+  const Vec3 hit = (f.finalPosition(a) + f.finalPosition(b) + f.finalPosition(c)) / 3;
+  EXPECT_LE(hit.y, -kSkin + 1e-12);
 }
 
 TEST(Response, FrictionSticksWithinTheStaticConeAndSlidesBeyondIt) {

@@ -12,6 +12,7 @@
 #include <thintool/response/Separation.h>
 #include <thintool/tool/ToolModel.h>
 
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -58,11 +59,13 @@ struct ToolOptions {
   /// soft body's own collision margin (btSoftBody::getCollisionShape()->getMargin()), as Bullet's
   /// stock soft–rigid contact does.
   std::optional<Real> skin;
-  /// How fast (m/s) a pair that begins with soft nodes already inside the skin (a body created
-  /// within the tool's margin, a tool registered or set down onto tissue) grows its skin from the
-  /// closest node's distance to the full skin. Pushed out to the full skin in one step, those nodes
-  /// would leave at up to skin/dt: 15 m/s from Bullet's default 0.25 m margin at 60 Hz. Infinite:
-  /// at once.
+  /// How fast (m/s) a soft node that begins a step inside the skin but outside the tool is pushed
+  /// out to the full skin: a body created within the tool's margin, a tool registered or set down
+  /// onto tissue, and a node that Bullet's soft solve (links, pressure) left inside the skin in the
+  /// step before. Pushed out to the full skin in one step, those nodes would leave at up to
+  /// skin/dt: 15 m/s from Bullet's default 0.25 m margin at 60 Hz, and a pressure body pressed
+  /// against the tool would bounce between the solve and the push every step. A pair's first step
+  /// also keeps only the closest node's distance and grows from there. Infinite: at once.
   Real skinGrowthSpeed = 1;
 
   /// Swept detection (detection/SweptDetection.h): contacts over the whole motion of a step, so a
@@ -92,6 +95,8 @@ struct ToolOptions {
     options.separation.enabled = false;
     options.energyGuard.enabled = false;
     options.response.friction.enabled = false;  // the paper's response is frictionless
+    // The paper moves every colliding node to the tool's surface at once.
+    options.skinGrowthSpeed = std::numeric_limits<Real>::infinity();
     return options;
   }
   /// The paper's Fig. 7 (right) ablation: discrete rays only, without association and both checks.

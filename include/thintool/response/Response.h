@@ -25,10 +25,13 @@
 ///      near a rim can carry one into the tool from a side no contact speaks for; such a node
 ///      leaves through the face it was outside of at the start of the step, as in pass 2;
 ///   then, when FrictionSettings::enabled, Coulomb friction on the moved nodes (see there).
-///   A projection has no stiffness and no time-step limit: the nodes are where they must be at the
-///   end of the step, and their velocities follow from the move. The equivalent force on the tool
-///   is Σ m·Δx/dt². The glue then asks the soft solver to hold the moved nodes (see
-///   ResponseSettings::holdInSolver).
+///   The skin is kept whole by every point that began the step beyond it, and by every face's or
+///   edge's contact point. A soft node that began the step inside the skin (outside the tool) keeps
+///   only where it began plus skinGrowthSpeed·dt: its way out of the tool is immediate, its way
+///   back to the full skin at bounded speed, as Box2D v3.0 bounds the speed at which contacts push
+///   overlapping bodies apart (b2WorldDef::contactPushoutVelocity). Put back to the full skin at
+///   once, a node that the soft solve pulls into the skin every step would bounce between the solve
+///   and the projection at skin/dt.
 /// - ResponseKind::PaperForce: the paper's eq. (2), f = k·t along the contact normal, t being the
 ///   penetration into the tool's skin, spread over the face's nodes by the hit's barycentric
 ///   weights. Bullet's classic solver clears node forces before collisions are processed, so a
@@ -113,21 +116,23 @@ class ResponseWorkspace {
   friend void computeHolds(const ToolModel&, const Pose&, const Pose&, const SoftPatch&, Real,
                            const std::vector<NodeCorrection>&, bool, ResponseWorkspace&, std::vector<NodeHold>&);
   friend void computeResponse(const ToolModel&, const Pose&, const Pose&, const SoftPatch&,
-                              const std::vector<Contact>&, Real, Real, const ResponseSettings&, ResponseWorkspace&,
-                              std::vector<NodeCorrection>&, Wrench&);
+                              const std::vector<Contact>&, Real, Real, Real, const ResponseSettings&,
+                              ResponseWorkspace&, std::vector<NodeCorrection>&, Wrench&);
   std::vector<Vec3> m_positions;
   std::vector<Index> m_slot;          ///< per patch vertex: its entry in the output, or kInvalidIndex
   std::vector<Real> m_largestShare;   ///< per output entry: the largest single move, whose normal it keeps
   std::vector<Real> m_entryDepth;     ///< per output entry: how far inside the tool the node was
+  std::vector<Real> m_contactSkinLeft;  ///< per contact: how much of the skin its point does not keep this step
 };
 
 /// Turns contacts into node corrections and the wrench on the tool, for a step of dt seconds with
-/// the given skin (m). previousToolPose is where the tool was at the start of the step (the node
+/// the given skin (m), to which a node that began the step inside it returns at skinGrowthSpeed
+/// (m/s, > 0; infinite: at once). previousToolPose is where the tool was at the start of the step (the node
 /// guard reads SoftPatch::previousPositions against it). Nodes of zero inverse mass (pinned) are
 /// never moved. Allocates nothing once the workspace and outCorrections have grown to the patch.
 void computeResponse(const ToolModel& model, const Pose& toolPose, const Pose& previousToolPose,
-                     const SoftPatch& patch, const std::vector<Contact>& contacts, Real skin, Real dt,
-                     const ResponseSettings& settings, ResponseWorkspace& workspace,
+                     const SoftPatch& patch, const std::vector<Contact>& contacts, Real skin,
+                     Real skinGrowthSpeed, Real dt, const ResponseSettings& settings, ResponseWorkspace& workspace,
                      std::vector<NodeCorrection>& outCorrections, Wrench& outWrench);
 
 /// The planes that keep the soft solver from undoing the response, or from dragging a node through
