@@ -68,6 +68,18 @@ struct Fixture {
     c.offset = -dot(normal, pose.apply(model.positions[c.toolNode]) + normal * kSkin);
     contacts.push_back(c);
   }
+  // A swept contact of soft node v with the plate's underside, y = 0, grown by the skin.
+  Contact& underside(Index v) {
+    Contact c;
+    c.kind = ContactKind::SoftNode;
+    c.softNodeCount = 1;
+    c.patchVertices = {v, kInvalidIndex, kInvalidIndex};
+    c.barycentric = {1, 0, 0};
+    c.normal = {0, -1, 0};
+    c.offset = -kSkin;
+    contacts.push_back(c);
+    return contacts.back();
+  }
   void respond(const ResponseSettings& settings = {}, const Pose* previous = nullptr) {
     computeResponse(model, pose, previous != nullptr ? *previous : pose, patch, contacts, kSkin, skinGrowthSpeed, kDt,
                     settings, workspace, corrections, wrench);
@@ -146,15 +158,7 @@ TEST(Response, NoCorrectionEndsInsideTheTool) {
 Real frictionDrag(bool enabled, Real staticCoefficient, Real kineticCoefficient) {
   Fixture f;
   const Index v = f.vertex({0, 0.003, 0});
-  Contact c;
-  c.kind = ContactKind::SoftNode;
-  c.softNodeCount = 1;
-  c.patchVertices = {v, kInvalidIndex, kInvalidIndex};
-  c.barycentric = {1, 0, 0};
-  c.normal = {0, -1, 0};
-  c.offset = -kSkin;  // the underside, y = 0, grown by the skin
-  c.depth = 0.003;
-  f.contacts.push_back(c);
+  f.underside(v).depth = 0.003;
   Pose previous = f.pose;
   previous.translation.x -= 0.002;
   ResponseSettings settings;
@@ -170,14 +174,7 @@ Real frictionDrag(bool enabled, Real staticCoefficient, Real kineticCoefficient)
 Index enteringNode(Fixture& f, Real startY) {
   const Vec3 start{0, startY, 0};
   const Index v = f.vertex({0, 0.002, 0}, 2, &start);
-  Contact contact;
-  contact.kind = ContactKind::SoftNode;
-  contact.softNodeCount = 1;
-  contact.patchVertices = {v, kInvalidIndex, kInvalidIndex};
-  contact.barycentric = {1, 0, 0};
-  contact.normal = {0, -1, 0};
-  contact.offset = -kSkin;  // the underside moved down by the skin
-  f.contacts.push_back(contact);
+  f.underside(v);
   return v;
 }
 
