@@ -575,19 +575,14 @@ void SoftBodySolver::surveyNodes(SoftBodyCache& cache, const btSoftBody& softBod
 
 void SoftBodySolver::stopAtPinnedNodes(btRigidBody& tool, const ToolModel& piece, const Pose& pieceEnd,
                                        Real inverseStep, const SoftBodyCache& cache, const btSoftBody& softBody) {
-  for (const Index id : cache.pinned) {
-    if (id >= static_cast<Index>(softBody.m_nodes.size())) continue;
-    const Vec3 at = toVec3(softBody.m_nodes[static_cast<int>(id)].m_x);
-    Index plane = 0;
-    const Real separation = outsideDistance(piece.planes, pieceEnd.applyInverse(at), &plane);
-    // The node cannot give way, so the tool does. A speculative contact, as Box2D's: the tool's
-    // point there may close on the node by the gap along the nearest face's normal in the next
-    // step, and no more; inside, it leaves fast enough to be out at the end of the next step, as a
-    // position solve would move it. The face's plane bounds the node's side of the piece, so the
-    // limit is conservative past an edge.
-    const btVector3 outward = toBt(pieceEnd.applyToDirection(piece.planes[plane].normal));
-    const btVector3 closeAtMost = outward * btScalar(separation * inverseStep);
-    detail::applyNodeReaction(tool, toBt(at), outward, 0, btScalar(inverseStep), closeAtMost);
+  for (int round = 0; round < detail::kStopRounds; ++round) {
+    btScalar largest = 0;
+    for (const Index id : cache.pinned) {
+      if (id >= static_cast<Index>(softBody.m_nodes.size())) continue;
+      const Vec3 at = toVec3(softBody.m_nodes[static_cast<int>(id)].m_x);
+      largest = btMax(largest, detail::stopShortOfPinnedNode(tool, piece, pieceEnd, at, inverseStep, false));
+    }
+    if (largest <= detail::kSettledStopImpulse) break;
   }
 }
 

@@ -458,6 +458,23 @@ void ToolAlgorithm::write(PieceStep& step) {
   if (options.force.enabled) {
     computeForces(state, step.softBody, step.pose, step.skin, step.timeStep, forceReacts ? dynamicBody : nullptr);
   }
+  // The soft solver's end-of-step stop at pinned nodes comes after the tool has moved; the
+  // reactions above and the tool's own forces come before it moves again, and would otherwise carry
+  // it past a pinned node it rests on. The tool is still where the step began: a dynamic tool's
+  // sweep starts there, and an unswept piece is taken there.
+  if (dynamicBody != nullptr && !forceReacts) {
+    const Pose& now = step.swept ? step.previousPose : step.pose;
+    const SoftPatch& patch = state.patch;
+    const Real inverseStep = Real(1) / Real(step.timeStep);
+    for (int round = 0; round < kStopRounds; ++round) {
+      btScalar largest = 0;
+      for (Index v = 0; v < patch.vertexCount(); ++v) {
+        if (patch.inverseMasses[v] > 0) continue;
+        largest = btMax(largest, stopShortOfPinnedNode(*dynamicBody, step.model, now, patch.positions[v], inverseStep, true));
+      }
+      if (largest <= kSettledStopImpulse) break;
+    }
+  }
 }
 
 void ToolAlgorithm::computeForces(PairState& state, btSoftBody& softBody, const Pose& pose, Real skin,

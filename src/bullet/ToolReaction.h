@@ -10,6 +10,9 @@
 // cap a tool lighter at that point than the node (a needle about its own axis, a light blade) is
 // sent back faster than it came, and the next step's larger moves send it back faster still.
 
+#include <thintool/core/Math.h>
+#include <thintool/tool/ToolModel.h>
+
 #include <LinearMath/btVector3.h>
 
 class btRigidBody;
@@ -23,5 +26,19 @@ namespace thintool::detail {
 /// move. Returns the impulse applied (N s, along -displacement).
 btScalar applyNodeReaction(btRigidBody& tool, const btVector3& nodePosition, const btVector3& displacement,
                            btScalar inverseNodeMass, btScalar inverseStep, const btVector3& nodeVelocity);
+
+/// A node that cannot give way (inverse mass 0) at node (m, world) stops tool, whose piece is at
+/// pieceNow, short of it over the next step of 1/inverseStep (s): a speculative contact along the
+/// nearest face's normal, as Box2D's, that lets the tool's point there close on the node by the
+/// gap and no more; from inside, the tool leaves fast enough to be out at the end of that step, as
+/// a position solve would move it. The face's plane bounds the node's side of the piece, so the
+/// limit is conservative past an edge. forcesPending: the tool's accumulated force and torque are
+/// yet to act over that step (in the collision pass, before Bullet's solver adds them). Returns the
+/// impulse applied (N s). A stop at one node can turn the tool into another: callers sweep their
+/// nodes until no stop applies more than kSettledStopImpulse, or kStopRounds times.
+btScalar stopShortOfPinnedNode(btRigidBody& tool, const ToolModel& piece, const Pose& pieceNow, const Vec3& node,
+                               Real inverseStep, bool forcesPending);
+inline constexpr int kStopRounds = 8;
+inline constexpr btScalar kSettledStopImpulse = btScalar(1e-7);
 
 }  // namespace thintool::detail

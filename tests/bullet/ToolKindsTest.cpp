@@ -164,6 +164,49 @@ TEST(ToolKinds, APinnedNodeStopsAFastDynamicToolBeforeItReachesIt) {
   delete sheet;
 }
 
+TEST(ToolKinds, APinnedNodeHoldsOffADynamicToolPushedAgainstIt) {
+  // The same sheet and plate, the plate set 0.02 m from the sheet and pushed at it by a steady 2 N.
+  // The node's stop at the end of a step comes after the plate has moved; the next step's reactions
+  // to the free nodes come before it moves again, and alone they would let the push carry the plate
+  // over the node a step at a time. The plate may tip and slide off the node, as a plate pushed
+  // onto a point would, but the node must never end a step inside it.
+  SoftWorld soft{btVector3(0, 0, 0)};
+  btSoftBody* sheet = btSoftBodyHelpers::CreatePatch(soft.world.getWorldInfo(), btVector3(0, 0.5, -0.5),
+                                                     btVector3(0, 0.5, 0.5), btVector3(0, 1.5, -0.5),
+                                                     btVector3(0, 1.5, 0.5), 5, 5, 0, true);
+  sheet->getCollisionShape()->setMargin(0.01);
+  sheet->setTotalMass(0.1);
+  const int middle = 12;
+  sheet->setMass(middle, 0);
+  soft.world.addSoftBody(sheet);
+  btBoxShape plateShape(btVector3(0.01, 0.15, 0.15));
+  btVector3 inertia;
+  plateShape.calculateLocalInertia(0.1, inertia);
+  btDefaultMotionState motion(btTransform(btQuaternion::getIdentity(), btVector3(-0.03, 1, 0)));
+  btRigidBody plate(btRigidBody::btRigidBodyConstructionInfo(0.1, &motion, &plateShape, inertia));
+  plate.setActivationState(DISABLE_DEACTIVATION);
+  soft.world.addRigidBody(&plate);
+  plate.setGravity(btVector3(0, 0, 0));
+  addTool(soft.world, plate);
+  const btScalar dt = btScalar(1) / 60;
+  const btVector3 half = plateShape.getHalfExtentsWithMargin();
+  btScalar closest = 1;  // the node's least distance outside the plate's faces (m); < 0: inside
+  for (int step = 0; step < 60; ++step) {
+    plate.applyCentralForce(btVector3(2, 0, 0));
+    soft.world.stepSimulation(dt, 1, dt);
+    const btVector3 local = plate.getWorldTransform().invXform(sheet->m_nodes[middle].m_x);
+    btScalar outside = -1;
+    for (int axis = 0; axis < 3; ++axis) outside = btMax(outside, btFabs(local[axis]) - half[axis]);
+    closest = btMin(closest, outside);
+  }
+  EXPECT_LT(closest, btScalar(0.005)) << "the push should bring the plate to the node";
+  EXPECT_GT(closest, btScalar(-0.001)) << "the pinned node ended a step inside the plate";
+  removeTool(soft.world, plate);
+  soft.world.removeRigidBody(&plate);
+  soft.world.removeSoftBody(sheet);
+  delete sheet;
+}
+
 TEST(ToolKinds, RegisteringAfterThePairExistsReroutesIt) {
   SceneSettings settings;
   settings.algorithm = Algorithm::ThinTool;
