@@ -64,6 +64,7 @@ SoftPatch gatherNear(const ConvexMesh& sphere, const Aabb& box) {
 }
 
 constexpr Real kSkin = 0.005;
+constexpr Real kDt = 1.0 / 60;
 constexpr Real kStepDisplacement = 1.0 / 60;  // 1 m/s at 60 Hz
 
 struct PressedSphere {
@@ -98,18 +99,16 @@ struct PressedSphere {
 void DetectionStep(benchmark::State& state) {
   const PressedSphere scene(int(state.range(0)));
   DetectionParameters parameters;
-  parameters.skin = kSkin;
   parameters.filters.reverseRay = false;
   PairHistory history;
-  DetectionWorkspace workspace;
-  std::vector<Contact> contacts;
-  contacts.reserve(scene.model.nodeCount());
-  DetectionCounters counters;
+  DetectionResult result;
+  result.contacts.reserve(scene.model.nodeCount());
+  const StepContext step{scene.model, scene.pose, scene.pose, kDt, kSkin};
   for (auto _ : state) {
-    detectContacts(scene.model, scene.pose, scene.patch, nullptr, parameters, history, workspace, contacts, counters);
-    benchmark::DoNotOptimize(contacts.data());
+    detectContacts(step, scene.patch, parameters, history, result);
+    benchmark::DoNotOptimize(result.contacts.data());
   }
-  scene.count(state, counters);
+  scene.count(state, result.counters);
 }
 BENCHMARK(DetectionStep)->DenseRange(3, 6)->Unit(benchmark::kMicrosecond);
 
@@ -118,13 +117,13 @@ void SweptStep(benchmark::State& state) {
   SideMemory memory;
   memory.resize(scene.patch.vertexCount() * 64, scene.patch.faceCount() * 64);
   SweptWorkspace workspace;
-  std::vector<Contact> contacts;
-  DetectionCounters counters;
+  DetectionResult result;
+  const StepContext step{scene.model, scene.previous, scene.pose, kDt, kSkin};
   for (auto _ : state) {
-    detectSwept(scene.model, scene.previous, scene.pose, scene.patch, kSkin, memory, workspace, contacts, counters);
-    benchmark::DoNotOptimize(contacts.data());
+    detectSwept(step, scene.patch, memory, workspace, result);
+    benchmark::DoNotOptimize(result.contacts.data());
   }
-  scene.count(state, counters);
+  scene.count(state, result.counters);
 }
 BENCHMARK(SweptStep)->DenseRange(3, 6)->Unit(benchmark::kMicrosecond);
 

@@ -67,7 +67,7 @@ struct PairState {
   Pose previousPose;
   bool hasPreviousPose = false;
   /// The force model's memory: each face's deformation rate, and the soft body's rigid motion.
-  ForceHistory forceHistory;
+  ForceResult force;  ///< the faces' forces, and their history for the rate
   RigidFit rigidFit;
   std::vector<Vec3> anchorPositions;
   /// Bodies that the solver contacts holding moved nodes refer to, one per node (see ToolAlgorithm).
@@ -78,13 +78,9 @@ struct PairState {
   int holdCount = 0;
 
   // Results of the latest step.
-  std::vector<Contact> contacts;
-  std::vector<NodeCorrection> corrections;
+  DetectionResult detection;  ///< the contacts, counters and excluded nodes, with detection's scratch
+  ResponseResult response;  ///< the corrections and the wrench, with the response's scratch
   std::vector<NodeHold> holds;
-  std::vector<Index> excludedNodes[2];  ///< tool nodes excluded by check 1 and by check 2
-  DetectionCounters counters;
-  Wrench wrench;
-  std::vector<FaceForce> faceForces;
   double detectionMicroseconds = 0;
   double responseMicroseconds = 0;
   Index rejectedCorrections = 0;
@@ -92,15 +88,15 @@ struct PairState {
   bool invalidPose = false;
 
   void clearResults() {
-    contacts.clear();
-    corrections.clear();
+    detection.contacts.clear();
+    detection.excludedNodes[0].clear();
+    detection.excludedNodes[1].clear();
+    detection.counters = DetectionCounters{};
+    response.corrections.clear();
+    response.wrench = Wrench{};
     holds.clear();
-    excludedNodes[0].clear();
-    excludedNodes[1].clear();
-    faceForces.clear();
+    force.faces.clear();
     holdCount = 0;
-    counters = DetectionCounters{};
-    wrench = Wrench{};
     detectionMicroseconds = 0;
     responseMicroseconds = 0;
     rejectedCorrections = 0;
@@ -113,7 +109,7 @@ struct PairState {
     clearResults();
     history.reset();
     sides.forget();
-    forceHistory.reset();
+    force.history.reset();
     step += 2;  // what was recorded before is no longer the previous step
     hasPreviousPose = false;
     skinInEffect = -1;

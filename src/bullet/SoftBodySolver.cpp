@@ -356,12 +356,12 @@ void SoftBodySolver::measureEnergy(btScalar timeStep) {
       const Pose now = toPose(tool->body().getWorldTransform());
       const Pose before = stepStart(*tool, now);
       for (const auto& pair : tool->m_pairs) {
-        if (pair->softBody != &softBody || !pair->live || pair->corrections.empty()) continue;
+        if (pair->softBody != &softBody || !pair->live || pair->response.corrections.empty()) continue;
         guarded = true;
         energy.speedFactor = std::max(energy.speedFactor, double(settings.speedFactor));
         energy.energySlack = std::max(energy.energySlack, double(settings.energySlack));
         energy.restingSpeed = std::max(energy.restingSpeed, double(settings.restingSpeed));
-        for (const NodeCorrection& correction : pair->corrections) {
+        for (const NodeCorrection& correction : pair->response.corrections) {
           const btSoftBody::Node* node = movedNode(softBody, *pair, correction);
           if (node == nullptr) continue;
           const Vec3 at = toVec3(node->m_x);
@@ -388,7 +388,7 @@ void SoftBodySolver::measureEnergy(btScalar timeStep) {
       if (!tool->m_options.energyGuard.enabled) continue;
       for (const auto& pair : tool->m_pairs) {
         if (pair->softBody != &softBody || !pair->live) continue;
-        for (const NodeCorrection& correction : pair->corrections) {
+        for (const NodeCorrection& correction : pair->response.corrections) {
           const btSoftBody::Node* node = movedNode(softBody, *pair, correction);
           if (node == nullptr || !isFinite(correction.displacement)) continue;
           const double m = 1 / double(node->m_im);

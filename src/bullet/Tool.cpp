@@ -27,7 +27,6 @@ Tool::Tool(btCollisionObject& body, const ToolOptions& options, std::vector<Tool
     largest = std::max(largest, piece.nodeCount());
   }
   m_report.contacts.reserve(largest);
-  m_detectionWorkspace.prepare(largest);
 }
 
 Tool::~Tool() { delete m_proxy; }
@@ -157,8 +156,8 @@ const ToolStepReport& Tool::report() {
       continue;
     }
     ++diagnostics.pairs;
-    diagnostics.detection.accumulate(state.counters);
-    diagnostics.nodesMoved += static_cast<Index>(state.corrections.size()) - state.rejectedCorrections;
+    diagnostics.detection.accumulate(state.detection.counters);
+    diagnostics.nodesMoved += static_cast<Index>(state.response.corrections.size()) - state.rejectedCorrections;
     diagnostics.rejectedCorrections += state.rejectedCorrections;
     diagnostics.detectionMicroseconds += state.detectionMicroseconds;
     diagnostics.responseMicroseconds += state.responseMicroseconds;
@@ -169,18 +168,19 @@ const ToolStepReport& Tool::report() {
     stock.noFaces += state.stock == detail::StockReason::NoFaces ? 1 : 0;
     diagnostics.invalidPosePairs += state.invalidPose ? 1 : 0;
     for (int check = 1; check <= 2; ++check) {
-      for (Index node : state.excludedNodes[check - 1]) {
+      for (Index node : state.detection.excludedNodes[check - 1]) {
         m_report.excludedNodes.push_back({state.softBody, state.piece, node, check});
       }
     }
 
     // The piece's wrench is about the piece's origin; move the torque to the body's origin.
     const Pose piecePose = bodyPose * m_pieceTransforms[state.piece];
-    m_report.wrench.force += state.wrench.force;
+    const Wrench& wrench = state.response.wrench;
+    m_report.wrench.force += wrench.force;
     m_report.wrench.torque +=
-        state.wrench.torque + cross(piecePose.translation - bodyPose.translation, state.wrench.force);
+        wrench.torque + cross(piecePose.translation - bodyPose.translation, wrench.force);
 
-    for (const FaceForce& face : state.faceForces) {
+    for (const FaceForce& face : state.force.faces) {
       contactForce.faces.push_back({state.softBody, state.piece, face});
       contactForce.force += face.force;
       contactForce.torque += cross(face.point - contactForce.torquePoint, face.force);
@@ -189,7 +189,7 @@ const ToolStepReport& Tool::report() {
     // What the soft solver left inside the tool, measured at the positions the step ended with.
     const ToolModel& model = m_pieces[state.piece];
     const btSoftBody& softBody = *state.softBody;
-    for (const Contact& contact : state.contacts) {
+    for (const Contact& contact : state.detection.contacts) {
       m_report.contacts.push_back({&softBody, state.piece, contact});
       if (contact.softFace >= static_cast<Index>(softBody.m_faces.size())) {
         continue;

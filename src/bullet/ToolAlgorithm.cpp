@@ -115,7 +115,7 @@ Real applyResponse(PairState& state, btSoftBody& softBody, btRigidBody* dynamicB
                    Real pieceReach) {
   Real longestSquared = 0;
   const btScalar inverseStep = 1 / timeStep;
-  for (const NodeCorrection& correction : state.corrections) {
+  for (const NodeCorrection& correction : state.response.corrections) {
     const Real justified = justifiedMove(state.patch, correction.vertex, pieceReach);
     if (!isFinite(correction.displacement) || !isFinite(correction.normal) ||
         !(lengthSquared(correction.displacement) <= justified * justified)) {
@@ -134,7 +134,7 @@ Real applyResponse(PairState& state, btSoftBody& softBody, btRigidBody* dynamicB
                         (node.m_x - displacement - node.m_q) * inverseStep);
     }
   }
-  if (dynamicBody != nullptr && !state.corrections.empty()) {
+  if (dynamicBody != nullptr && !state.response.corrections.empty()) {
     dynamicBody->activate();
   }
   const auto usable = [](const NodeHold& hold) { return isFinite(hold.normal) && std::isfinite(hold.offset); };
@@ -232,6 +232,11 @@ struct ToolAlgorithm::PieceStep {
   Real skin = 0;      ///< what the pair keeps this step (pairSkin), at most fullSkin (m)
   Index facesWalked = 0;  ///< soft faces the gather's walk met
   Clock::time_point start{};
+
+  // What the core's stages read of the step.
+  StepContext context(Real skinGrowthSpeed) const {
+    return {model, previousPose, pose, Real(timeStep), skin, skinGrowthSpeed};
+  }
 };
 
 void ToolAlgorithm::processCollision(const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1,
@@ -332,8 +337,8 @@ void ToolAlgorithm::prepareBuffers(PieceStep& step) {
   state.patch.nodeIds.reserve(softBody.m_nodes.size());
   state.patch.faces.reserve(softBody.m_faces.size());
   state.patch.faceIds.reserve(softBody.m_faces.size());
-  state.contacts.reserve(step.model.nodeCount());
-  state.corrections.reserve(softBody.m_nodes.size());
+  state.detection.contacts.reserve(step.model.nodeCount());
+  state.response.corrections.reserve(softBody.m_nodes.size());
   state.traversalStack.reserve(256);
   state.candidateFaces.reserve(softBody.m_faces.size());
   state.sides.resize(static_cast<Index>(softBody.m_nodes.size()), static_cast<Index>(softBody.m_faces.size()));
@@ -375,23 +380,19 @@ void ToolAlgorithm::detect(PieceStep& step) {
       patch.checkedPositions[v] =
           state.lastStep[id] + 1 == state.step ? state.lastPositions[id] : patch.previousPositions[v];
     }
-    detectSwept(step.model, step.previousPose, step.pose, patch, step.skin, state.sides, m_tool.m_sweptWorkspace,
-                state.contacts, state.counters);
+    detectSwept(step.context(m_tool.m_options.skinGrowthSpeed), patch, state.sides, m_tool.m_sweptWorkspace,
+                state.detection);
   } else {
+    const SoftBodyRayQuery reverseQuery(step.softBody, state.traversalStack);
     DetectionParameters parameters;
-    parameters.skin = step.skin;
     parameters.filters = m_tool.m_options.filters;
     parameters.reverseRayLength = parameters.filters.reverseRayLength.value_or(
         length(toVec3(step.softBody.m_bounds[1] - step.softBody.m_bounds[0])));
-    const SoftBodyRayQuery reverseQuery(step.softBody, state.traversalStack);
-    detectContacts(step.model, step.pose, state.patch, &reverseQuery, parameters, state.history,
-                   m_tool.m_detectionWorkspace, state.contacts, state.counters);
-    state.excludedNodes[0].assign(m_tool.m_detectionWorkspace.excludedByCheck1().begin(),
-                                  m_tool.m_detectionWorkspace.excludedByCheck1().end());
-    state.excludedNodes[1].assign(m_tool.m_detectionWorkspace.excludedByCheck2().begin(),
-                                  m_tool.m_detectionWorkspace.excludedByCheck2().end());
+    parameters.reverseQuery = &reverseQuery;
+    detectContacts(step.context(m_tool.m_options.skinGrowthSpeed), state.patch, parameters, state.history,
+                   state.detection);
   }
-  state.counters.facesWalked = step.facesWalked;
+  state.detection.counters.facesWalked = step.facesWalked;
 }
 
 // The corrections for the contacts; the pose becomes the start of the pair's next step.
@@ -403,9 +404,8 @@ void ToolAlgorithm::respond(PieceStep& step) {
     response.friction.staticCoefficient = pairFriction(step.softBody, step.toolBody);
     response.friction.kineticCoefficient = response.friction.staticCoefficient;
   }
-  computeResponse(step.model, step.pose, step.previousPose, state.patch, state.contacts, step.skin,
-                  m_tool.m_options.skinGrowthSpeed, step.timeStep, response, m_tool.m_responseWorkspace,
-                  state.corrections, state.wrench);
+  computeResponse(step.context(m_tool.m_options.skinGrowthSpeed), state.patch, state.detection.contacts, response,
+                  state.response);
   state.previousPose = step.pose;
   state.hasPreviousPose = true;
 }
@@ -422,7 +422,7 @@ void ToolAlgorithm::rememberSweep(PieceStep& step) {
     state.lastPositions[patch.nodeIds[v]] = patch.positions[v];
     state.lastStep[patch.nodeIds[v]] = state.step;
   }
-  for (const NodeCorrection& correction : state.corrections) {
+  for (const NodeCorrection& correction : state.response.corrections) {
     const Index v = correction.vertex;
     state.softReach =
         std::max(state.softReach, length(patch.positions[v] + correction.displacement - patch.previousPositions[v]));
@@ -436,12 +436,12 @@ void ToolAlgorithm::write(PieceStep& step) {
   PairState& state = step.state;
   btRigidBody* dynamicBody = m_tool.dynamicBody();
   if (options.response.kind == ResponseKind::Constraint && options.response.holdInSolver) {
-    computeHolds(step.model, step.pose, step.previousPose, state.patch, step.skin, state.corrections, step.swept,
-                 m_tool.m_responseWorkspace, state.holds);
+    computeHolds(step.context(m_tool.m_options.skinGrowthSpeed), state.patch, step.swept, state.response,
+                 state.holds);
     // Only once the response has moved a node: the pass also changes how the body's other
     // contacts are solved (a pressure body on the ground shook at twice stock's speed), which a
     // tool merely near the body must not do.
-    if (!state.corrections.empty() && (options.response.friction.enabled || dynamicBody != nullptr)) {
+    if (!state.response.corrections.empty() && (options.response.friction.enabled || dynamicBody != nullptr)) {
       makeContactsLast(step.softBody);
     }
   }
@@ -456,7 +456,7 @@ void ToolAlgorithm::write(PieceStep& step) {
     m_tool.m_pass->recordMoves(moved);
   }
   if (options.force.enabled) {
-    computeForces(state, step.softBody, step.pose, step.skin, step.timeStep, forceReacts ? dynamicBody : nullptr);
+    computeForces(step, forceReacts ? dynamicBody : nullptr);
   }
   // The soft solver's end-of-step stop at pinned nodes comes after the tool has moved; the
   // reactions above and the tool's own forces come before it moves again, and would otherwise carry
@@ -477,8 +477,9 @@ void ToolAlgorithm::write(PieceStep& step) {
   }
 }
 
-void ToolAlgorithm::computeForces(PairState& state, btSoftBody& softBody, const Pose& pose, Real skin,
-                                  btScalar timeStep, btRigidBody* reactingBody) {
+void ToolAlgorithm::computeForces(PieceStep& step, btRigidBody* reactingBody) {
+  PairState& state = step.state;
+  btSoftBody& softBody = step.softBody;
   const ForceSettings& settings = m_tool.m_options.force;
   const RestShape& rest = m_tool.restShape(softBody);
   if (settings.measure == DeformationMeasure::Indentation) {
@@ -488,15 +489,15 @@ void ToolAlgorithm::computeForces(PairState& state, btSoftBody& softBody, const 
     }
     state.rigidFit = fitRigidMotion(rest, state.anchorPositions, state.rigidFit);
   }
-  state.forceHistory.resize(static_cast<Index>(softBody.m_faces.size()));
-  computeContactForces(m_tool.m_pieces[state.piece], pose, skin, state.patch, state.contacts, rest, state.rigidFit,
-                       settings, timeStep, state.forceHistory, state.faceForces);
+  state.force.history.resize(static_cast<Index>(softBody.m_faces.size()));
+  computeContactForces(step.context(m_tool.m_options.skinGrowthSpeed), state.patch, state.detection.contacts,
+                       {settings, rest, state.rigidFit}, state.force);
   if (reactingBody == nullptr) {
     return;
   }
-  for (const FaceForce& face : state.faceForces) {
+  for (const FaceForce& face : state.force.faces) {
     if (isFinite(face.force) && isFinite(face.point) && lengthSquared(face.force) > 0) {
-      reactingBody->applyImpulse(toBt(face.force * timeStep),
+      reactingBody->applyImpulse(toBt(face.force * step.timeStep),
                                  toBt(face.point) - reactingBody->getCenterOfMassPosition());
       reactingBody->activate();
     }

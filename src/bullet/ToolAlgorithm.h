@@ -61,8 +61,7 @@ class ToolAlgorithm final : public btCollisionAlgorithm {
   void rememberSweep(PieceStep& step);
   void write(PieceStep& step);
   // The force model on the piece's contacts; reactingBody, when not null, receives the force.
-  void computeForces(PairState& state, btSoftBody& softBody, const Pose& pose, Real skin, btScalar timeStep,
-                     btRigidBody* reactingBody);
+  void computeForces(PieceStep& step, btRigidBody* reactingBody);
 
   Tool& m_tool;
   Mode m_mode;

@@ -61,26 +61,26 @@ void DetectionWorkspace::prepare(Index n) {
   m_visited.assign(n, 0);
   m_visitedList.clear();
   m_visitedList.reserve(n);
-  for (std::vector<Index>& excluded : m_excluded) {
-    excluded.clear();
-    excluded.reserve(n);
-  }
 }
 
-void detectContacts(const ToolModel& model, const Pose& toolPose, const SoftPatch& patch,
-                    const SoftSurfaceRayQuery* reverseQuery, const DetectionParameters& parameters,
-                    PairHistory& history, DetectionWorkspace& work, std::vector<Contact>& outContacts,
-                    DetectionCounters& outCounters) {
+void detectContacts(const StepContext& step, const SoftPatch& patch, const DetectionParameters& parameters,
+                    PairHistory& history, DetectionResult& out) {
   THINTOOL_ASSERT(patch.consistent());
+  const ToolModel& model = step.model;
+  const Pose& toolPose = step.pose;
+  const Real skin = step.skin;
+  const SoftSurfaceRayQuery* reverseQuery = parameters.reverseQuery;
+  DetectionWorkspace& work = out.workspace;
+  std::vector<Contact>& outContacts = out.contacts;
+  DetectionCounters& outCounters = out.counters;
   outContacts.clear();
   outCounters = DetectionCounters{};
   outCounters.facesGathered = patch.faceCount();
   if (work.m_bestDistance.size() < model.nodeCount()) {
     work.prepare(model.nodeCount());
   }
-  work.m_excluded[0].clear();
-  work.m_excluded[1].clear();
-  const Real skin = parameters.skin;
+  out.excludedNodes[0].clear();
+  out.excludedNodes[1].clear();
 
   // Soft vertices into the tool's frame, where the rays and their tree are fixed.
   const Index vertexCount = patch.vertexCount();
@@ -141,7 +141,7 @@ void detectContacts(const ToolModel& model, const Pose& toolPose, const SoftPatc
     ++outCounters.candidates;
     if (useCheck1 && history.isBlocked(node)) {
       ++outCounters.excludedByCheck1;
-      work.m_excluded[0].push_back(node);
+      out.excludedNodes[0].push_back(node);
       continue;
     }
     const Vec3& normal = model.normals[node];
@@ -152,7 +152,7 @@ void detectContacts(const ToolModel& model, const Pose& toolPose, const SoftPatc
                               orientation;
       if (dot(faceNormal, normal) >= 0) {
         ++outCounters.excludedByCheck2;
-        work.m_excluded[1].push_back(node);
+        out.excludedNodes[1].push_back(node);
         continue;
       }
       if (useReverseRay) {
@@ -160,7 +160,7 @@ void detectContacts(const ToolModel& model, const Pose& toolPose, const SoftPatc
         const Vec3 delta = toolPose.applyToDirection(normal) * parameters.reverseRayLength;
         if (!reverseQuery->anyHit(from, delta)) {
           ++outCounters.excludedByCheck2;
-          work.m_excluded[1].push_back(node);
+          out.excludedNodes[1].push_back(node);
           continue;
         }
       }

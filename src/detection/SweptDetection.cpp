@@ -256,10 +256,17 @@ void SideMemory::resize(Index softNodes, Index softFaces) {
   }
 }
 
-void detectSwept(const ToolModel& model, const Pose& previousPose, const Pose& pose, const SoftPatch& patch, Real skin,
-                 SideMemory& memory, SweptWorkspace& work, std::vector<Contact>& outContacts,
-                 DetectionCounters& outCounters) {
+void detectSwept(const StepContext& step, const SoftPatch& patch, SideMemory& memory, SweptWorkspace& work,
+                 DetectionResult& out) {
   THINTOOL_ASSERT(patch.consistent());
+  const ToolModel& model = step.model;
+  const Pose& previousPose = step.previousPose;
+  const Pose& pose = step.pose;
+  const Real skin = step.skin;
+  std::vector<Contact>& outContacts = out.contacts;
+  DetectionCounters& outCounters = out.counters;
+  out.excludedNodes[0].clear();
+  out.excludedNodes[1].clear();
   outContacts.clear();
   outCounters = DetectionCounters{};
   outCounters.facesGathered = patch.faceCount();

@@ -116,10 +116,17 @@ void ForceHistory::reset() {
   m_step += 2;  // nothing recorded so far is the previous step any more
 }
 
-void computeContactForces(const ToolModel& model, const Pose& toolPose, Real skin, const SoftPatch& patch,
-                          const std::vector<Contact>& contacts, const RestShape& rest, const RigidFit& rigidFit,
-                          const ForceSettings& settings, Real dt, ForceHistory& history,
-                          std::vector<FaceForce>& outForces) {
+void computeContactForces(const StepContext& step, const SoftPatch& patch, const std::vector<Contact>& contacts,
+                          const ForceInput& input, ForceResult& out) {
+  const ForceSettings& settings = input.settings;
+  const RestShape& rest = input.rest;
+  const RigidFit& rigidFit = input.rigidFit;
+  const ToolModel& model = step.model;
+  const Pose& toolPose = step.pose;
+  const Real skin = step.skin;
+  const Real dt = step.dt;
+  ForceHistory& history = out.history;
+  std::vector<FaceForce>& outForces = out.faces;
   THINTOOL_ASSERT(patch.consistent());
   outForces.clear();
   ++history.m_step;

@@ -130,16 +130,46 @@ void applyFriction(const FrictionSettings& friction, const Pose& toolPose, const
 
 }  // namespace
 
-void computeResponse(const ToolModel& model, const Pose& toolPose, const Pose& previousToolPose,
-                     const SoftPatch& patch, const std::vector<Contact>& contacts, Real skin,
-                     Real skinGrowthSpeed, Real dt, const ResponseSettings& settings, ResponseWorkspace& work,
-                     std::vector<NodeCorrection>& outCorrections, Wrench& outWrench) {
-  THINTOOL_ASSERT(patch.consistent());
-  outCorrections.clear();
-  outWrench = Wrench{};
-  if (settings.kind == ResponseKind::None || !(dt > 0)) {
-    return;
+// One call of computeResponse: the step, its inputs, and the node positions as the stages move
+// them. A node gets a slot, an entry in the output, the first time a stage moves it.
+struct ResponseProjection {
+  const StepContext& step;
+  const SoftPatch& patch;
+  const std::vector<Contact>& contacts;
+  ResponseWorkspace& work;
+  std::vector<NodeCorrection>& corrections;
+
+  void begin();
+  NodeCorrection& slotOf(Index vertex);
+  const Vec3& positionOf(Index vertex) const {
+    return work.m_slot[vertex] == kInvalidIndex ? patch.positions[vertex] : work.m_positions[vertex];
   }
+  bool movable(Index vertex) const { return patch.inverseMasses[vertex] > 0; }
+  // The skin a soft point keeps this step: all of it for a point that began the step beyond the
+  // skin; for one that began inside it, where it began plus skinGrowthSpeed·dt, so that the
+  // projection never throws it out faster than that.
+  Real skinFrom(const Vec3& startPosition) const {
+    const Real start = outsideDistance(step.model.planes, step.previousPose.applyInverse(startPosition));
+    return std::min(step.skin, std::max(start, Real(0)) + step.skinGrowthSpeed * step.dt);
+  }
+  // Signed distance in front of the contact's plane, moved back to the skin the point keeps.
+  Real distanceOf(const Contact& contact, const Vec3& position) const {
+    return dot(contact.normal, position) + contact.offset + work.m_contactSkinLeft[&contact - contacts.data()];
+  }
+
+  void pushByPaperForce(Real stiffness);
+  void leaveThroughEntryPlanes();
+  void guardStrayNodes();
+  void moveChosenNodesOut();
+  void projectContactPoints();
+  void returnCarriedNodes();
+  void slideWithFriction(const FrictionSettings& friction) {
+    applyFriction(friction, step.pose, step.previousPose, patch, work.m_positions, corrections);
+  }
+  void finish(Wrench& outWrench);
+};
+
+void ResponseProjection::begin() {
   const Index vertexCount = patch.vertexCount();
   if (work.m_slot.size() < vertexCount) {
     work.m_slot.resize(vertexCount, kInvalidIndex);
@@ -147,192 +177,217 @@ void computeResponse(const ToolModel& model, const Pose& toolPose, const Pose& p
   work.m_positions.resize(vertexCount);
   work.m_largestShare.clear();
   work.m_entryDepth.clear();
-
-  auto slotOf = [&](Index vertex) -> NodeCorrection& {
-    THINTOOL_ASSERT(vertex < vertexCount);
-    if (work.m_slot[vertex] == kInvalidIndex) {
-      work.m_slot[vertex] = static_cast<Index>(outCorrections.size());
-      work.m_positions[vertex] = patch.positions[vertex];
-      NodeCorrection correction;
-      correction.vertex = vertex;
-      outCorrections.push_back(correction);
-      work.m_largestShare.push_back(0);
-      work.m_entryDepth.push_back(0);
-    }
-    return outCorrections[work.m_slot[vertex]];
-  };
-  auto positionOf = [&](Index vertex) -> const Vec3& {
-    return work.m_slot[vertex] == kInvalidIndex ? patch.positions[vertex] : work.m_positions[vertex];
-  };
-  auto movable = [&](Index vertex) { return patch.inverseMasses[vertex] > 0; };
-  // The skin a soft point keeps this step: all of it for a point that began the step beyond the
-  // skin; for one that began inside it, where it began plus skinGrowthSpeed·dt, so that the
-  // projection never throws it out faster than that.
-  const Real growth = skinGrowthSpeed * dt;
-  auto skinFrom = [&](const Vec3& startPosition) {
-    const Real start = outsideDistance(model.planes, previousToolPose.applyInverse(startPosition));
-    return std::min(skin, std::max(start, Real(0)) + growth);
-  };
   work.m_contactSkinLeft.clear();
   for (const Contact& contact : contacts) {
     // A face's or an edge's contact point is wherever the tool meets it this step, not a point
     // of the soft body that has a place at the start of the step: it keeps the whole skin.
     const bool node = contact.kind == ContactKind::SoftNode;
-    work.m_contactSkinLeft.push_back(node ? skin - skinFrom(patch.previousPositions[contact.patchVertices[0]]) : 0);
+    work.m_contactSkinLeft.push_back(node ? step.skin - skinFrom(patch.previousPositions[contact.patchVertices[0]])
+                                          : 0);
   }
-  // Signed distance in front of the contact's plane, moved back to the skin the point keeps.
-  auto distanceOf = [&](const Contact& contact, const Vec3& position) {
-    return dot(contact.normal, position) + contact.offset + work.m_contactSkinLeft[&contact - contacts.data()];
-  };
+}
 
-  if (settings.kind == ResponseKind::PaperForce) {
-    for (const Contact& contact : contacts) {
-      const Real pushForce = settings.stiffness * (contact.depth + skin);
-      for (Index k = 0; k < contact.softNodeCount; ++k) {
-        const Index vertex = contact.patchVertices[k];
-        if (!movable(vertex)) {
-          continue;
-        }
-        NodeCorrection& correction = slotOf(vertex);
-        work.m_positions[vertex] +=
-            contact.normal * (pushForce * contact.barycentric[k] * patch.inverseMasses[vertex] * dt * dt);
+NodeCorrection& ResponseProjection::slotOf(Index vertex) {
+  THINTOOL_ASSERT(vertex < patch.vertexCount());
+  if (work.m_slot[vertex] == kInvalidIndex) {
+    work.m_slot[vertex] = static_cast<Index>(corrections.size());
+    work.m_positions[vertex] = patch.positions[vertex];
+    NodeCorrection correction;
+    correction.vertex = vertex;
+    corrections.push_back(correction);
+    work.m_largestShare.push_back(0);
+    work.m_entryDepth.push_back(0);
+  }
+  return corrections[work.m_slot[vertex]];
+}
+
+// The paper's eq. (2) as the displacement it causes within the step (see the file's comment).
+void ResponseProjection::pushByPaperForce(Real stiffness) {
+  for (const Contact& contact : contacts) {
+    const Real pushForce = stiffness * (contact.depth + step.skin);
+    for (Index k = 0; k < contact.softNodeCount; ++k) {
+      const Index vertex = contact.patchVertices[k];
+      if (!movable(vertex)) {
+        continue;
+      }
+      NodeCorrection& correction = slotOf(vertex);
+      work.m_positions[vertex] +=
+          contact.normal * (pushForce * contact.barycentric[k] * patch.inverseMasses[vertex] * step.dt * step.dt);
+      correction.normal = contact.normal;
+    }
+  }
+}
+
+// Soft nodes inside the tool choose the least-violated plane among their contacts': a swept
+// contact of the node itself, or the entry plane of a ray that hit one of its faces. Never across
+// the tool, never out of its far side. moveChosenNodesOut moves them.
+void ResponseProjection::leaveThroughEntryPlanes() {
+  for (const Contact& contact : contacts) {
+    if (contact.kind != ContactKind::ToolRay && contact.kind != ContactKind::SoftNode) {
+      continue;
+    }
+    for (Index k = 0; k < contact.softNodeCount; ++k) {
+      const Index vertex = contact.patchVertices[k];
+      const Real behind = -distanceOf(contact, patch.positions[vertex]);
+      if (!movable(vertex) || !(behind > 0)) {
+        continue;
+      }
+      if (contact.kind == ContactKind::ToolRay &&
+          outsideDistance(step.model.planes, step.pose.applyInverse(patch.positions[vertex])) >= step.skin) {
+        continue;  // beside the tool: projectContactPoints moves its face
+      }
+      NodeCorrection& correction = slotOf(vertex);
+      Real& chosen = work.m_entryDepth[work.m_slot[vertex]];
+      if (chosen == 0 || behind < chosen) {
+        chosen = behind;
         correction.normal = contact.normal;
       }
     }
-  } else {
-    // Pass 1: soft nodes inside the tool leave through the least-violated plane among their
-    // contacts': a swept contact of the node itself, or the entry plane of a ray that hit one of
-    // its faces. Never across the tool, never out of its far side.
+  }
+}
+
+// The node guard: nodes inside the tool that no contact speaks for choose the face they entered by.
+void ResponseProjection::guardStrayNodes() {
+  for (Index vertex = 0; vertex < patch.vertexCount(); ++vertex) {
+    if (work.m_slot[vertex] != kInvalidIndex || !movable(vertex)) {
+      continue;
+    }
+    Vec3 normal;
+    const Real depth = depthBehindEntryFace(step.model, step.pose, step.previousPose, patch.previousPositions[vertex],
+                                            patch.positions[vertex], skinFrom(patch.previousPositions[vertex]), normal);
+    if (!(depth > 0)) {
+      continue;
+    }
+    NodeCorrection& correction = slotOf(vertex);
+    work.m_entryDepth[work.m_slot[vertex]] = depth;
+    correction.normal = normal;
+  }
+}
+
+void ResponseProjection::moveChosenNodesOut() {
+  for (NodeCorrection& correction : corrections) {
+    const Index slot = work.m_slot[correction.vertex];
+    work.m_positions[correction.vertex] += correction.normal * work.m_entryDepth[slot];
+    // A node moved as a whole keeps that direction for the solver's hold.
+    work.m_largestShare[slot] = std::numeric_limits<Real>::max();
+  }
+}
+
+// Every contact's soft point onto its plane (shareContactMove), swept in order until all are out.
+void ResponseProjection::projectContactPoints() {
+  constexpr int kSweeps = 4;
+  constexpr Real kSettled = 1e-6;  // m
+  for (int sweep = 0; sweep < kSweeps; ++sweep) {
+    Real worst = 0;
     for (const Contact& contact : contacts) {
-      if (contact.kind != ContactKind::ToolRay && contact.kind != ContactKind::SoftNode) {
+      Vec3 point;
+      for (Index k = 0; k < contact.softNodeCount; ++k) {
+        point += positionOf(contact.patchVertices[k]) * contact.barycentric[k];
+      }
+      const Real depth = -distanceOf(contact, point);
+      std::array<Real, 3> shares{};
+      if (!(depth > 0) || !shareContactMove(contact, patch.inverseMasses, depth, shares)) {
         continue;
       }
+      worst = std::max(worst, depth);
       for (Index k = 0; k < contact.softNodeCount; ++k) {
         const Index vertex = contact.patchVertices[k];
-        const Real behind = -distanceOf(contact, patch.positions[vertex]);
-        if (!movable(vertex) || !(behind > 0)) {
+        const Real share = shares[k];
+        if (!(share > 0)) {
           continue;
         }
-        if (contact.kind == ContactKind::ToolRay &&
-            outsideDistance(model.planes, toolPose.applyInverse(patch.positions[vertex])) >= skin) {
-          continue;  // beside the tool: the hit point's pass moves its face
-        }
         NodeCorrection& correction = slotOf(vertex);
-        Real& chosen = work.m_entryDepth[work.m_slot[vertex]];
-        if (chosen == 0 || behind < chosen) {
-          chosen = behind;
+        work.m_positions[vertex] += contact.normal * share;
+        Real& largest = work.m_largestShare[work.m_slot[vertex]];
+        if (share > largest) {
+          largest = share;
           correction.normal = contact.normal;
         }
       }
     }
-
-    // Pass 2, the node guard: nodes inside the tool that no contact speaks for.
-    if (settings.guardNodes) {
-      for (Index vertex = 0; vertex < vertexCount; ++vertex) {
-        if (work.m_slot[vertex] != kInvalidIndex || !movable(vertex)) {
-          continue;
-        }
-        Vec3 normal;
-        const Real depth = depthBehindEntryFace(model, toolPose, previousToolPose, patch.previousPositions[vertex],
-                                                patch.positions[vertex], skinFrom(patch.previousPositions[vertex]),
-                                                normal);
-        if (!(depth > 0)) {
-          continue;
-        }
-        NodeCorrection& correction = slotOf(vertex);
-        work.m_entryDepth[work.m_slot[vertex]] = depth;
-        correction.normal = normal;
-      }
-    }
-    for (NodeCorrection& correction : outCorrections) {
-      const Index slot = work.m_slot[correction.vertex];
-      work.m_positions[correction.vertex] += correction.normal * work.m_entryDepth[slot];
-      // A node moved as a whole keeps that direction for the solver's hold.
-      work.m_largestShare[slot] = std::numeric_limits<Real>::max();
-    }
-
-    // Pass 3: every contact's soft point onto its plane (shareContactMove).
-    constexpr int kSweeps = 4;
-    constexpr Real kSettled = 1e-6;  // m
-    for (int sweep = 0; sweep < kSweeps; ++sweep) {
-      Real worst = 0;
-      for (const Contact& contact : contacts) {
-        Vec3 point;
-        for (Index k = 0; k < contact.softNodeCount; ++k) {
-          point += positionOf(contact.patchVertices[k]) * contact.barycentric[k];
-        }
-        const Real depth = -distanceOf(contact, point);
-        std::array<Real, 3> shares{};
-        if (!(depth > 0) || !shareContactMove(contact, patch.inverseMasses, depth, shares)) {
-          continue;
-        }
-        worst = std::max(worst, depth);
-        for (Index k = 0; k < contact.softNodeCount; ++k) {
-          const Index vertex = contact.patchVertices[k];
-          const Real share = shares[k];
-          if (!(share > 0)) {
-            continue;
-          }
-          NodeCorrection& correction = slotOf(vertex);
-          work.m_positions[vertex] += contact.normal * share;
-          Real& largest = work.m_largestShare[work.m_slot[vertex]];
-          if (share > largest) {
-            largest = share;
-            correction.normal = contact.normal;
-          }
-        }
-      }
-      if (worst <= kSettled) {
-        break;
-      }
-    }
-
-    // Pass 4: a face's contact moves its nodes along the face's normal, which near a rim can carry
-    // a node into the tool from a side no contact speaks for. Such a node leaves again as in pass 2.
-    // Carried across the tool, or round its rim, from where the step began, a node goes back to
-    // the face it came by: contacts and detection's sides are per face, and a face wrapped round a
-    // rim can push one of its nodes over the tool while the face itself ends on its own side.
-    for (NodeCorrection& correction : outCorrections) {
-      const Index vertex = correction.vertex;
-      const Vec3 startLocal = previousToolPose.applyInverse(patch.previousPositions[vertex]);
-      const Vec3 endLocal = toolPose.applyInverse(work.m_positions[vertex]);
-      const Real nodeSkin = skinFrom(patch.previousPositions[vertex]);
-      Index entry = kInvalidIndex;
-      if (outsideDistance(model.planes, endLocal, &entry) < nodeSkin) {
-        outsideDistance(model.planes, startLocal, &entry);
-      } else if (model.planes[entry].signedDistance(startLocal) > nodeSkin) {
-        entry = kInvalidIndex;  // in front of the same face all along: the path misses the tool
-      } else {
-        entry = planeMovedThrough(model, startLocal, endLocal, nodeSkin);
-      }
-      if (entry != kInvalidIndex) {
-        const Plane& face = model.planes[entry];
-        const Vec3 faceNormal = toolPose.applyToDirection(face.normal);
-        work.m_positions[vertex] += faceNormal * (nodeSkin - face.signedDistance(endLocal));
-        correction.normal = faceNormal;
-      }
-    }
-
-    if (settings.friction.enabled) {
-      applyFriction(settings.friction, toolPose, previousToolPose, patch, work.m_positions, outCorrections);
+    if (worst <= kSettled) {
+      break;
     }
   }
+}
 
-  // Displacements, the reaction on the tool, and the slots cleared for the next call.
-  const Real inverseDtSquared = 1 / (dt * dt);
-  for (NodeCorrection& correction : outCorrections) {
+// A face's contact moves its nodes along the face's normal, which near a rim can carry a node into
+// the tool from a side no contact speaks for: it leaves again as the node guard sends it. Carried
+// across the tool, or round its rim, from where the step began, a node goes back to the face it
+// came by: contacts and detection's sides are per face, and a face wrapped round a rim can push one
+// of its nodes over the tool while the face itself ends on its own side.
+void ResponseProjection::returnCarriedNodes() {
+  const ToolModel& model = step.model;
+  for (NodeCorrection& correction : corrections) {
+    const Index vertex = correction.vertex;
+    const Vec3 startLocal = step.previousPose.applyInverse(patch.previousPositions[vertex]);
+    const Vec3 endLocal = step.pose.applyInverse(work.m_positions[vertex]);
+    const Real nodeSkin = skinFrom(patch.previousPositions[vertex]);
+    Index entry = kInvalidIndex;
+    if (outsideDistance(model.planes, endLocal, &entry) < nodeSkin) {
+      outsideDistance(model.planes, startLocal, &entry);
+    } else if (model.planes[entry].signedDistance(startLocal) > nodeSkin) {
+      entry = kInvalidIndex;  // in front of the same face all along: the path misses the tool
+    } else {
+      entry = planeMovedThrough(model, startLocal, endLocal, nodeSkin);
+    }
+    if (entry != kInvalidIndex) {
+      const Plane& face = model.planes[entry];
+      const Vec3 faceNormal = step.pose.applyToDirection(face.normal);
+      work.m_positions[vertex] += faceNormal * (nodeSkin - face.signedDistance(endLocal));
+      correction.normal = faceNormal;
+    }
+  }
+}
+
+// Displacements, the reaction on the tool, and the slots cleared for the next call.
+void ResponseProjection::finish(Wrench& outWrench) {
+  const Real inverseDtSquared = 1 / (step.dt * step.dt);
+  for (NodeCorrection& correction : corrections) {
     const Index vertex = correction.vertex;
     correction.displacement = work.m_positions[vertex] - patch.positions[vertex];
     const Vec3 forceOnTool = correction.displacement * (-inverseDtSquared / patch.inverseMasses[vertex]);
     outWrench.force += forceOnTool;
-    outWrench.torque += cross(patch.positions[vertex] - toolPose.translation, forceOnTool);
+    outWrench.torque += cross(patch.positions[vertex] - step.pose.translation, forceOnTool);
     work.m_slot[vertex] = kInvalidIndex;
   }
 }
 
-void computeHolds(const ToolModel& model, const Pose& toolPose, const Pose& previousToolPose, const SoftPatch& patch,
-                  Real skin, const std::vector<NodeCorrection>& corrections, bool holdAtToolFaces,
-                  ResponseWorkspace& work, std::vector<NodeHold>& outHolds) {
+void computeResponse(const StepContext& step, const SoftPatch& patch, const std::vector<Contact>& contacts,
+                     const ResponseSettings& settings, ResponseResult& out) {
+  THINTOOL_ASSERT(patch.consistent());
+  out.corrections.clear();
+  out.wrench = Wrench{};
+  if (settings.kind == ResponseKind::None || !(step.dt > 0)) {
+    return;
+  }
+  ResponseProjection projection{step, patch, contacts, out.workspace, out.corrections};
+  projection.begin();
+  if (settings.kind == ResponseKind::PaperForce) {
+    projection.pushByPaperForce(settings.stiffness);
+  } else {
+    projection.leaveThroughEntryPlanes();
+    if (settings.guardNodes) {
+      projection.guardStrayNodes();
+    }
+    projection.moveChosenNodesOut();
+    projection.projectContactPoints();
+    projection.returnCarriedNodes();
+    if (settings.friction.enabled) {
+      projection.slideWithFriction(settings.friction);
+    }
+  }
+  projection.finish(out.wrench);
+}
+
+void computeHolds(const StepContext& step, const SoftPatch& patch, bool holdAtToolFaces, ResponseResult& response,
+                  std::vector<NodeHold>& outHolds) {
+  const ToolModel& model = step.model;
+  const Pose& toolPose = step.pose;
+  const Pose& previousToolPose = step.previousPose;
+  const Real skin = step.skin;
+  const std::vector<NodeCorrection>& corrections = response.corrections;
+  std::vector<Vec3>& positions = response.workspace.m_positions;
   outHolds.clear();
   for (const NodeCorrection& correction : corrections) {
     THINTOOL_ASSERT(correction.vertex < patch.vertexCount());
@@ -345,15 +400,15 @@ void computeHolds(const ToolModel& model, const Pose& toolPose, const Pose& prev
   // A moved node keeps its correction's plane, and the tool face's too: a correction along a soft
   // face's normal gives a plane across the tool's face, which would leave the node free to go
   // through the tool during the solve.
-  work.m_positions.assign(patch.positions.begin(), patch.positions.end());
+  positions.assign(patch.positions.begin(), patch.positions.end());
   for (const NodeCorrection& correction : corrections) {
-    work.m_positions[correction.vertex] += correction.displacement;
+    positions[correction.vertex] += correction.displacement;
   }
   for (Index vertex = 0; vertex < patch.vertexCount(); ++vertex) {
     if (!(patch.inverseMasses[vertex] > 0)) {
       continue;
     }
-    const Vec3 local = toolPose.applyInverse(work.m_positions[vertex]);
+    const Vec3 local = toolPose.applyInverse(positions[vertex]);
     const Vec3 startLocal = previousToolPose.applyInverse(patch.previousPositions[vertex]);
     Index front = kInvalidIndex;
     Real distance = -std::numeric_limits<Real>::max();

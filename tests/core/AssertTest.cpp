@@ -80,10 +80,8 @@ TEST(Assert, TheResponseChecksThePatchItIsGivenWhenTheLibraryWasBuiltWithChecks)
   patch.faces.push_back({0, 1, 2});
   ASSERT_FALSE(patch.consistent());
   const ToolModel model = buildToolModel(makeBoxMesh({0.1, 0.01, 0.1}), ToolModelSettings{});
-  ResponseWorkspace workspace;
-  std::vector<NodeCorrection> corrections;
-  Wrench wrench;
-  computeResponse(model, Pose{}, Pose{}, patch, {}, 0.001, 1, 0.01, ResponseSettings{}, workspace, corrections, wrench);
+  ResponseResult result;
+  computeResponse({model, Pose{}, Pose{}, 0.01, 0.001}, patch, {}, ResponseSettings{}, result);
   EXPECT_EQ(g_failure.count, libraryChecksAsserts() ? 1 : 0);
   if (libraryChecksAsserts()) {
     EXPECT_EQ(g_failure.condition, "patch.consistent()");

@@ -15,6 +15,7 @@ namespace {
 
 constexpr Real kHalfThickness = 0.01;
 constexpr Real kSkin = 0.005;
+constexpr Real kDt = 0.01;
 
 struct Step {
   Index colliding = 0;
@@ -39,13 +40,14 @@ class Fig4Sequence : public ::testing::Test {
     Pose pose;
     pose.translation = {0, 1 - depth + kHalfThickness, 0};
     DetectionParameters parameters;
-    parameters.skin = kSkin;
     parameters.filters.check1 = check1;
     parameters.filters.check2 = check2;
     parameters.reverseRayLength = 3;
-    std::vector<Contact> contacts;
+    parameters.reverseQuery = &m_query;
     Step step;
-    detectContacts(m_model, pose, m_patch, &m_query, parameters, m_history, m_workspace, contacts, step.counters);
+    detectContacts({m_model, pose, pose, kDt, kSkin}, m_patch, parameters, m_history, m_result);
+    const std::vector<Contact>& contacts = m_result.contacts;
+    step.counters = m_result.counters;
     step.colliding = static_cast<Index>(contacts.size());
     for (const Contact& c : contacts) {
       step.pushingUp += c.normal.y > 0.5 ? 1 : 0;
@@ -61,7 +63,7 @@ class Fig4Sequence : public ::testing::Test {
   test::BruteForceRayQuery m_query;
   ToolModel m_model;
   PairHistory m_history;
-  DetectionWorkspace m_workspace;
+  DetectionResult m_result;
 };
 
 TEST_F(Fig4Sequence, NoContactThenBottomNodesThenImmersedWithTopNodesExcluded) {
@@ -80,7 +82,7 @@ TEST_F(Fig4Sequence, NoContactThenBottomNodesThenImmersedWithTopNodesExcluded) {
   EXPECT_EQ(immersed.pushingUp, 0u) << "top nodes must be excluded";
   EXPECT_GT(immersed.counters.excludedByCheck1, 0u);
   // The nodes themselves, for display: as many as counted, each a node blocked by check 1.
-  const std::vector<Index>& excluded = m_workspace.excludedByCheck1();
+  const std::vector<Index>& excluded = m_result.excludedNodes[0];
   EXPECT_EQ(excluded.size(), immersed.counters.excludedByCheck1);
   for (Index node : excluded) EXPECT_LT(node, m_model.nodeCount());
 }
@@ -149,10 +151,10 @@ TEST(Detection, ContactsReportWhereTheRayMetTheFace) {
   DetectionParameters parameters;
   parameters.filters.reverseRay = false;  // an open triangle: nothing behind it
   PairHistory history;
-  DetectionWorkspace workspace;
-  std::vector<Contact> contacts;
-  DetectionCounters counters;
-  detectContacts(model, pose, patch, nullptr, parameters, history, workspace, contacts, counters);
+  DetectionResult result;
+  detectContacts({model, pose, pose, 0.01, 0}, patch, parameters, history, result);
+  const std::vector<Contact>& contacts = result.contacts;
+  const DetectionCounters& counters = result.counters;
   ASSERT_EQ(contacts.size(), 4u);  // the 2 × 2 grid of the underside
   for (const Contact& c : contacts) {
     EXPECT_EQ(c.softFace, 7u);
@@ -174,11 +176,13 @@ TEST(Detection, NonFiniteSoftFacesAreSkippedAndCounted) {
   Pose pose;
   pose.translation = {0, 0.995, 0};
   PairHistory history;
-  DetectionWorkspace workspace;
-  std::vector<Contact> contacts;
-  DetectionCounters counters;
+  DetectionResult result;
   test::BruteForceRayQuery query(patch);
-  detectContacts(model, pose, patch, &query, {}, history, workspace, contacts, counters);
+  DetectionParameters parameters;
+  parameters.reverseQuery = &query;
+  detectContacts({model, pose, pose, 0.01, 0}, patch, parameters, history, result);
+  const std::vector<Contact>& contacts = result.contacts;
+  const DetectionCounters& counters = result.counters;
   EXPECT_EQ(counters.skippedFaces, 5u);  // an icosahedron vertex has five faces
   for (const Contact& c : contacts) {
     EXPECT_TRUE(isFinite(c.point));

@@ -36,11 +36,10 @@ class OneFace : public ::testing::Test {
     patch.nodeIds = {0, 1, 2};
     patch.faces = {{0, 1, 2}};
     patch.faceIds = {0};
-    std::vector<Contact> contacts;
-    DetectionCounters counters;
     const Pose still;
-    detectSwept(m_model, still, still, patch, kSkin, m_memory, m_work, contacts, counters);
-    return contacts;
+    DetectionResult result;
+    detectSwept({m_model, still, still, 0.01, kSkin}, patch, m_memory, m_work, result);
+    return result.contacts;
   }
 
   // Whether the contacts hold the face beyond the needle's end, on the +x side, the skin away.

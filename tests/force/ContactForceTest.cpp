@@ -67,9 +67,9 @@ struct Press {
   ConvexMesh sphere = test::icosphere(1, {0, 0, 0}, 2);
   SoftPatch patch = test::patchOf(sphere);
   RestShape rest;
-  ForceHistory history;
+  ForceResult result;
+  std::vector<FaceForce>& forces = result.faces;
   std::vector<Contact> contacts;
-  std::vector<FaceForce> forces;
   std::vector<Vec3> anchors;
   RigidFit fit;
   ForceSettings settings;
@@ -81,7 +81,7 @@ struct Press {
 
   Press() {
     rest.capture(patch.positions, patch.inverseMasses, 64);
-    history.resize(patch.faceCount());
+    result.history.resize(patch.faceCount());
     settings.enabled = true;
     settings.huntCrossley = model(200, 0, 1);
     // Every node above y = 0.9 is held by a contact of the tool's underside, pushing down.
@@ -123,7 +123,7 @@ struct Press {
     return sum;
   }
   void step() {
-    computeContactForces(plate, platePose, skin, patch, contacts, rest, fit, settings, kDt, history, forces);
+    computeContactForces({plate, platePose, platePose, kDt, skin}, patch, contacts, {settings, rest, fit}, result);
   }
 };
 

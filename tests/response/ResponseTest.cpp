@@ -20,9 +20,9 @@ struct Fixture {
   Pose pose;
   SoftPatch patch;
   std::vector<Contact> contacts;
-  ResponseWorkspace workspace;
-  std::vector<NodeCorrection> corrections;
-  Wrench wrench;
+  ResponseResult result;
+  std::vector<NodeCorrection>& corrections = result.corrections;
+  Wrench& wrench = result.wrench;
   Real skinGrowthSpeed = kSkinGrowthSpeed;
 
   Fixture() {
@@ -80,9 +80,9 @@ struct Fixture {
     contacts.push_back(c);
     return contacts.back();
   }
+  StepContext context(const Pose& previous) const { return {model, previous, pose, kDt, kSkin, skinGrowthSpeed}; }
   void respond(const ResponseSettings& settings = {}, const Pose* previous = nullptr) {
-    computeResponse(model, pose, previous != nullptr ? *previous : pose, patch, contacts, kSkin, skinGrowthSpeed, kDt,
-                    settings, workspace, corrections, wrench);
+    computeResponse(context(previous != nullptr ? *previous : pose), patch, contacts, settings, result);
   }
   Vec3 finalPosition(Index v) const {
     for (const NodeCorrection& c : corrections) {
@@ -113,8 +113,9 @@ TEST(Response, NodesInsideTheToolLeaveThroughTheEntrySideAndPinnedNodesStay) {
 
 TEST(Response, BesideAPinnedNodeNoNodeMovesFurtherThanItsContactPoint) {
   // Weight 0.99 on a pinned node: the free node would need a hundred times the hit point's depth.
-  // Pass 1 takes it out of the tool, then each of pass 3's four sweeps moves it at most the
-  // point's depth; the point stays partly inside, for the last word.
+  // Leaving through its entry plane takes it out of the tool, then each of the four sweeps that
+  // project the contact points moves it at most the point's depth; the point stays partly inside,
+  // for the last word.
   Fixture f;
   const Index free = f.vertex({-0.1, 0.003, -0.1});
   const Index pin = f.vertex({0.1, 0.003, -0.1}, 0);
@@ -320,7 +321,7 @@ TEST(Response, AHoldKeepsANodeOnTheSideItCameFrom) {
   const Vec3 start{0.25, -0.05, 0};
   f.vertex({0.25, 0.3, 0}, 2, &start);
   std::vector<NodeHold> holds;
-  computeHolds(f.model, f.pose, f.pose, f.patch, kSkin, f.corrections, true, f.workspace, holds);
+  computeHolds(f.context(f.pose), f.patch, true, f.result, holds);
   ASSERT_EQ(holds.size(), 1u);
   EXPECT_NEAR(holds[0].normal.x, 1, 1e-12);
   EXPECT_NEAR(holds[0].offset, -(0.2 + kSkin), 1e-12);
@@ -329,8 +330,7 @@ TEST(Response, AHoldKeepsANodeOnTheSideItCameFrom) {
   Fixture above;
   const Vec3 startAbove{0.25, 0.1, 0};
   above.vertex({0.25, 0.3, 0}, 2, &startAbove);
-  computeHolds(above.model, above.pose, above.pose, above.patch, kSkin, above.corrections, true, above.workspace,
-               holds);
+  computeHolds(above.context(above.pose), above.patch, true, above.result, holds);
   ASSERT_EQ(holds.size(), 1u);
   EXPECT_NEAR(holds[0].normal.y, 1, 1e-12);
 }

@@ -222,9 +222,7 @@ class Tool {
   Pose m_poseNow;
   bool m_motionTracked = false;
   bool m_jumpNext = false;
-  DetectionWorkspace m_detectionWorkspace;
   SweptWorkspace m_sweptWorkspace;
-  ResponseWorkspace m_responseWorkspace;
   ToolStepReport m_report;
   /// The last word's view of the motion: the body's pose when the stage last ran (the start of
   /// this step), whether it has one, and whether resetMotion() declared the next move a jump.

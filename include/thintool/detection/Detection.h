@@ -23,6 +23,7 @@
 /// (ToolModel::rayTree), so the cost follows the contact region, not the soft body's size.
 
 #include <thintool/detection/SoftPatch.h>
+#include <thintool/tool/StepContext.h>
 #include <thintool/tool/ToolModel.h>
 
 #include <array>
@@ -46,9 +47,10 @@ struct FilterSettings {
 
 /// Per-step parameters, resolved by the glue for one soft body.
 struct DetectionParameters {
-  Real skin = 0;              ///< contact margin in front of the tool's faces (m, >= 0)
   FilterSettings filters;
   Real reverseRayLength = 0;  ///< filters.reverseRayLength, or the glue's choice when it is empty (m, > 0)
+  /// The soft surface check 2's reverse ray is cast against; null when filters.reverseRay is off.
+  const SoftSurfaceRayQuery* reverseQuery = nullptr;
 };
 
 /// What met what.
@@ -115,20 +117,16 @@ class PairHistory {
   std::vector<Index> m_blockedList;
 };
 
-/// Scratch memory of detection, sized once per tool (for its largest piece) and reused by every
-/// step and pair.
+struct DetectionResult;
+
+/// The ray detection's scratch, sized to the tool piece on first use and kept from step to step.
 class DetectionWorkspace {
  public:
   void prepare(Index nodeCount);
-  /// The tool nodes the latest detectContacts call excluded by check 1 and by check 2, for
-  /// display (the viewer colours them).
-  const std::vector<Index>& excludedByCheck1() const { return m_excluded[0]; }
-  const std::vector<Index>& excludedByCheck2() const { return m_excluded[1]; }
 
  private:
-  friend void detectContacts(const ToolModel&, const Pose&, const SoftPatch&, const SoftSurfaceRayQuery*,
-                             const DetectionParameters&, PairHistory&, DetectionWorkspace&, std::vector<Contact>&,
-                             DetectionCounters&);
+  friend void detectContacts(const StepContext&, const SoftPatch&, const DetectionParameters&, PairHistory&,
+                             DetectionResult&);
   std::vector<Vec3> m_localPositions;
   std::vector<std::uint8_t> m_localValid;
   std::vector<Real> m_bestDistance;
@@ -137,15 +135,21 @@ class DetectionWorkspace {
   std::vector<Real> m_bestV;
   std::vector<std::uint8_t> m_visited;
   std::vector<Index> m_visitedList;
-  std::vector<Index> m_excluded[2];
 };
 
-/// Finds this step's contacts between a tool piece at toolPose and the soft patch, filters them,
-/// and updates the pair's history. Allocates nothing once the workspace and outContacts have
-/// grown to the patch and tool sizes. reverseQuery may be null when parameters.reverseRay is off.
-void detectContacts(const ToolModel& model, const Pose& toolPose, const SoftPatch& patch,
-                    const SoftSurfaceRayQuery* reverseQuery, const DetectionParameters& parameters,
-                    PairHistory& history, DetectionWorkspace& workspace, std::vector<Contact>& outContacts,
-                    DetectionCounters& outCounters);
+/// What detection found in a step, and the scratch it found it with.
+struct DetectionResult {
+  std::vector<Contact> contacts;
+  DetectionCounters counters;
+  /// The tool nodes the ray detection excluded by check 1 and by check 2 (the viewer colours them).
+  std::vector<Index> excludedNodes[2];
+  DetectionWorkspace workspace;
+};
+
+/// Finds this step's contacts between the tool piece at the context's pose, grown by its skin, and
+/// the soft patch, filters them, and updates the pair's history. Allocates nothing once the result
+/// has grown to the patch and tool sizes.
+void detectContacts(const StepContext& step, const SoftPatch& patch, const DetectionParameters& parameters,
+                    PairHistory& history, DetectionResult& out);
 
 }  // namespace thintool

@@ -76,18 +76,16 @@ class SideMemory {
 /// Scratch memory of swept detection, reused by every step and pair.
 class SweptWorkspace {
  private:
-  friend void detectSwept(const ToolModel&, const Pose&, const Pose&, const SoftPatch&, Real, SideMemory&,
-                          SweptWorkspace&, std::vector<Contact>&, DetectionCounters&);
+  friend void detectSwept(const StepContext&, const SoftPatch&, SideMemory&, SweptWorkspace&, DetectionResult&);
   std::vector<Vec3> m_start;  ///< patch vertices at the start of the step, in the tool's previous frame
   std::vector<Vec3> m_end;    ///< at the end, in its current frame
   std::vector<std::uint8_t> m_valid;
 };
 
-/// Finds the contacts of a tool piece moving from previousPose to pose against the soft patch
-/// (positions at the end of the step, previousPositions at its start), keeping the skin (m).
-/// Allocates nothing once the workspace and outContacts have grown.
-void detectSwept(const ToolModel& model, const Pose& previousPose, const Pose& pose, const SoftPatch& patch, Real skin,
-                 SideMemory& memory, SweptWorkspace& workspace, std::vector<Contact>& outContacts,
-                 DetectionCounters& outCounters);
+/// Finds the contacts of the tool piece moving from the context's previousPose to its pose against
+/// the soft patch (positions at the end of the step, previousPositions at its start), keeping the
+/// context's skin. Allocates nothing once the workspace and the result have grown.
+void detectSwept(const StepContext& step, const SoftPatch& patch, SideMemory& memory, SweptWorkspace& workspace,
+                 DetectionResult& out);
 
 }  // namespace thintool

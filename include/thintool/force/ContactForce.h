@@ -28,6 +28,7 @@
 #include <thintool/core/Math.h>
 #include <thintool/detection/Detection.h>
 #include <thintool/detection/SoftPatch.h>
+#include <thintool/tool/StepContext.h>
 #include <thintool/tool/ToolModel.h>
 
 #include <cstdint>
@@ -113,6 +114,9 @@ struct RigidFit {
 /// rest.anchors()[i] is now). previous seeds the rotation's iteration (the last step's fit).
 RigidFit fitRigidMotion(const RestShape& rest, const std::vector<Vec3>& anchorPositions, const RigidFit& previous);
 
+struct ForceInput;
+struct ForceResult;
+
 /// What the force model keeps per (tool piece, soft body) from one step to the next: each face's
 /// last deformation and filtered rate, for ẋ.
 class ForceHistory {
@@ -121,9 +125,8 @@ class ForceHistory {
   void reset();
 
  private:
-  friend void computeContactForces(const ToolModel&, const Pose&, Real, const SoftPatch&, const std::vector<Contact>&,
-                                   const RestShape&, const RigidFit&, const ForceSettings&, Real, ForceHistory&,
-                                   std::vector<FaceForce>&);
+  friend void computeContactForces(const StepContext&, const SoftPatch&, const std::vector<Contact>&, const ForceInput&,
+                                   ForceResult&);
   std::vector<Real> m_lastDeformation;
   std::vector<Real> m_rate;
   std::vector<std::uint32_t> m_lastStep;
@@ -131,13 +134,24 @@ class ForceHistory {
   std::uint32_t m_step = 1;
 };
 
-/// The forces of this step's soft faces in contact with the tool piece at toolPose (grown by
-/// skin, m), on the tool, for a step of dt seconds. patch.positions must hold where the response
-/// left the nodes; contacts' patchVertices index into patch. rigidFit is ignored by the centroid
-/// measure. Allocates nothing once the history and outForces have grown to the soft body.
-void computeContactForces(const ToolModel& model, const Pose& toolPose, Real skin, const SoftPatch& patch,
-                          const std::vector<Contact>& contacts, const RestShape& rest, const RigidFit& rigidFit,
-                          const ForceSettings& settings, Real dt, ForceHistory& history,
-                          std::vector<FaceForce>& outForces);
+/// What the force model reads besides the step and its contacts.
+struct ForceInput {
+  const ForceSettings& settings;
+  const RestShape& rest;      ///< the soft body at rest
+  const RigidFit& rigidFit;   ///< the body's rigid motion now; ignored by the centroid measure
+};
+
+/// The forces of a step, and what the model carries to the next.
+struct ForceResult {
+  std::vector<FaceForce> faces;  ///< on the tool, one per soft face in contact
+  ForceHistory history;          ///< resize it to the soft body's face count before a step
+};
+
+/// The forces of this step's soft faces in contact with the tool piece at the context's pose
+/// (grown by its skin), on the tool. patch.positions must hold where the response left the nodes;
+/// contacts' patchVertices index into patch. Allocates nothing once the result has grown to the
+/// soft body.
+void computeContactForces(const StepContext& step, const SoftPatch& patch, const std::vector<Contact>& contacts,
+                          const ForceInput& input, ForceResult& out);
 
 }  // namespace thintool

@@ -6,24 +6,26 @@
 /// What the soft body does about this step's contacts.
 ///
 /// - ResponseKind::Constraint (default): a position projection after position-based dynamics
-///   (Müller et al., "Position based dynamics", 2007), in four passes, and friction:
-///   1. every soft node of a hit face that lies inside the tool (its faces' planes moved out by
-///      the skin) leaves through the entry plane of one of its face's contacts, the one it is
-///      least behind: never across the tool, never out of its far side;
-///   2. the node guard, beyond the paper: any other soft node near the tool that ends inside it
-///      (it slipped in between the rays, at a rim) leaves through the face it was outside of at
-///      the start of the step, judged in the tool's previous pose, so it too returns to the side
-///      it came from;
-///   3. each contact moves the point where its ray met the soft face onto its entry plane; the
-///      move is shared by the face's nodes in proportion to barycentric weight × inverse mass, the
-///      smallest mass-weighted move that does it, so a needle pressing the middle of a large face
-///      moves the face and a node far from the hit point moves little; but beside a pinned node no
-///      node moves further than the point itself, which then moves only part of the way, rather
-///      than fling the free node a hundred times the depth.
-///      Contacts are swept in order (Gauss–Seidel) until every hit point is out, or four times;
-///   4. no move may end inside the tool: pass 3 moves a face's nodes along the face's normal, which
-///      near a rim can carry one into the tool from a side no contact speaks for; such a node
-///      leaves through the face it was outside of at the start of the step, as in pass 2;
+///   (Müller et al., "Position based dynamics", 2007), in four stages, and friction:
+///   - leaving through the entry plane: every soft node of a hit face that lies inside the tool
+///     (its faces' planes moved out by the skin) leaves through the entry plane of one of its
+///     face's contacts, the one it is least behind: never across the tool, never out of its far
+///     side;
+///   - the node guard, beyond the paper: any other soft node near the tool that ends inside it
+///     (it slipped in between the rays, at a rim) leaves through the face it was outside of at
+///     the start of the step, judged in the tool's previous pose, so it too returns to the side
+///     it came from;
+///   - the contact points onto their planes: each contact moves the point where its ray met the
+///     soft face onto its entry plane; the move is shared by the face's nodes in proportion to
+///     barycentric weight × inverse mass, the smallest mass-weighted move that does it, so a
+///     needle pressing the middle of a large face moves the face and a node far from the hit point
+///     moves little; but beside a pinned node no node moves further than the point itself, which
+///     then moves only part of the way, rather than fling the free node a hundred times the depth.
+///     Contacts are swept in order (Gauss–Seidel) until every hit point is out, or four times;
+///   - carried nodes back: no move may end inside the tool. Moving a face's nodes along the face's
+///     normal can, near a rim, carry one into the tool from a side no contact speaks for, or across
+///     the tool or round its rim; such a node goes back to the face it was outside of at the start
+///     of the step, as the node guard sends it;
 ///   then, when FrictionSettings::enabled, Coulomb friction on the moved nodes (see there).
 ///   The skin is kept whole by every point that began the step beyond it, and by every face's or
 ///   edge's contact point. A soft node that began the step inside the skin (outside the tool) keeps
@@ -42,6 +44,7 @@
 /// - ResponseKind::None: contacts are reported, nothing is moved.
 
 #include <thintool/detection/Detection.h>
+#include <thintool/tool/StepContext.h>
 
 #include <vector>
 
@@ -73,7 +76,7 @@ struct ResponseSettings {
   ResponseKind kind = ResponseKind::Constraint;
   /// PaperForce: k of f = k·t (N/m, > 0).
   Real stiffness = 1000;
-  /// Constraint: the node guard (pass 2). Off, only nodes of faces the rays hit are moved.
+  /// Constraint: the node guard. Off, only nodes of faces the rays hit are moved.
   bool guardNodes = true;
   /// Constraint: give Bullet's soft solver one-sided plane contacts (btSoftBody::RContact) that
   /// hold the moved nodes where the projection put them and, with swept detection, every other
@@ -111,13 +114,14 @@ struct Wrench {
   Vec3 torque;
 };
 
+struct ResponseResult;
+
+/// The response's scratch, kept from call to call so that a step allocates nothing once it has
+/// grown to the patch.
 class ResponseWorkspace {
  private:
-  friend void computeHolds(const ToolModel&, const Pose&, const Pose&, const SoftPatch&, Real,
-                           const std::vector<NodeCorrection>&, bool, ResponseWorkspace&, std::vector<NodeHold>&);
-  friend void computeResponse(const ToolModel&, const Pose&, const Pose&, const SoftPatch&,
-                              const std::vector<Contact>&, Real, Real, Real, const ResponseSettings&,
-                              ResponseWorkspace&, std::vector<NodeCorrection>&, Wrench&);
+  friend struct ResponseProjection;
+  friend void computeHolds(const StepContext&, const SoftPatch&, bool, ResponseResult&, std::vector<NodeHold>&);
   std::vector<Vec3> m_positions;
   std::vector<Index> m_slot;          ///< per patch vertex: its entry in the output, or kInvalidIndex
   std::vector<Real> m_largestShare;   ///< per output entry: the largest single move, whose normal it keeps
@@ -125,15 +129,20 @@ class ResponseWorkspace {
   std::vector<Real> m_contactSkinLeft;  ///< per contact: how much of the skin its point does not keep this step
 };
 
-/// Turns contacts into node corrections and the wrench on the tool, for a step of dt seconds with
-/// the given skin (m), to which a node that began the step inside it returns at skinGrowthSpeed
-/// (m/s, > 0; infinite: at once). previousToolPose is where the tool was at the start of the step (the node
-/// guard reads SoftPatch::previousPositions against it). Nodes of zero inverse mass (pinned) are
-/// never moved. Allocates nothing once the workspace and outCorrections have grown to the patch.
-void computeResponse(const ToolModel& model, const Pose& toolPose, const Pose& previousToolPose,
-                     const SoftPatch& patch, const std::vector<Contact>& contacts, Real skin,
-                     Real skinGrowthSpeed, Real dt, const ResponseSettings& settings, ResponseWorkspace& workspace,
-                     std::vector<NodeCorrection>& outCorrections, Wrench& outWrench);
+/// What the response did in a step, and the scratch it did it with.
+struct ResponseResult {
+  std::vector<NodeCorrection> corrections;
+  Wrench wrench;  ///< on the tool; torque about the tool's origin
+  ResponseWorkspace workspace;
+};
+
+/// Turns contacts into node corrections and the wrench on the tool over the step. The context's
+/// previousPose is where the tool was at the start of the step (the node guard reads
+/// SoftPatch::previousPositions against it); a node that began the step inside the skin returns to
+/// it at the context's skinGrowthSpeed. Nodes of zero inverse mass (pinned) are never moved.
+/// Allocates nothing once the result has grown to the patch.
+void computeResponse(const StepContext& step, const SoftPatch& patch, const std::vector<Contact>& contacts,
+                     const ResponseSettings& settings, ResponseResult& out);
 
 /// The planes that keep the soft solver from undoing the response, or from dragging a node through
 /// the tool while it repairs a deformed body: each moved node keeps the plane it was moved onto
@@ -141,13 +150,12 @@ void computeResponse(const ToolModel& model, const Pose& toolPose, const Pose& p
 /// of the patch outside the tool grown by the skin, moved or not, also keeps the plane of a tool
 /// face it is in front of, which separates it from the tool (a moved node's own plane may be a soft
 /// face's, across the tool's face): of the faces it was also in front of at the start of the step
-/// (previousPositions, previousToolPose), the one it is farthest in front of, so that a node the
+/// (previousPositions, the context's previousPose), the one it is farthest in front of, so that a node the
 /// tool passed beside a rim is held beside the rim, not behind the face on the tool's far side from
 /// where it came; chosen anew each step, it still lets a node wrap around a rim over several steps.
 /// Ask for it only where every node is known to be on its own side of the tool, as after swept
 /// detection: a node that slipped through unseen would be held on the wrong side.
-void computeHolds(const ToolModel& model, const Pose& toolPose, const Pose& previousToolPose, const SoftPatch& patch,
-                  Real skin, const std::vector<NodeCorrection>& corrections, bool holdAtToolFaces,
-                  ResponseWorkspace& workspace, std::vector<NodeHold>& outHolds);
+void computeHolds(const StepContext& step, const SoftPatch& patch, bool holdAtToolFaces, ResponseResult& response,
+                  std::vector<NodeHold>& outHolds);
 
 }  // namespace thintool
