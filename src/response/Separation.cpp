@@ -574,6 +574,76 @@ void moveStuckFacesTogether(const ToolModel& piece, const PieceMotion& motion, c
   }
 }
 
+// How many faces meet the piece (grown by tolerance) at the end of the step, the group's nodes
+// (patch.inCluster) at `carried` and the others where they are.
+int facesMeeting(const ToolModel& piece, const Pose& end, const SeparationPatch& patch,
+                 const std::vector<Vec3>& carried, Real tolerance) {
+  int meeting = 0;
+  for (const std::array<Index, 3>& face : patch.faces) {
+    Vec3 local[3];
+    for (int k = 0; k < 3; ++k) {
+      const Vec3& at = patch.inCluster[face[k]] != 0 ? carried[face[k]] : patch.positions[face[k]];
+      local[k] = end.applyInverse(at);
+    }
+    meeting += TriangleAxes(piece, local, nullptr, tolerance).meets() ? 1 : 0;
+  }
+  return meeting;
+}
+
+// The last resort, when the faces still pierced after the rounds and moveStuckFacesTogether have no
+// place they can all take: their movable nodes are carried with the piece, each to where it stood
+// in the piece's frame at the start of the step. There every face of theirs was clear, so a face
+// whose nodes all go along is clear again, whatever the turn; a face with some nodes left behind
+// brings them along, and the group grows until no face it touches meets the piece. The nodes move
+// as the tool's surface does, no faster; none can have passed through the piece, which they never
+// moved against. Applied only if fewer faces then meet the piece than before.
+void carryStuckFacesWithPiece(const ToolModel& piece, const PieceMotion& motion, Real tolerance,
+                              SeparationPatch& patch) {
+  constexpr int kMostGrowths = 16;
+  const Pose& end = motion.end();
+  const Index vertexCount = patch.vertexCount();
+  patch.inCluster.assign(vertexCount, 0);
+  patch.carried.resize(vertexCount);
+  const auto join = [&](const std::array<Index, 3>& face) {
+    bool grew = false;
+    for (Index v : face) {
+      if (patch.inverseMasses[v] > 0 && patch.inCluster[v] == 0) {
+        patch.inCluster[v] = 1;
+        patch.carried[v] = end.apply(motion.start().applyInverse(patch.startPositions[v]));
+        grew = true;
+      }
+    }
+    return grew;
+  };
+  const int before = facesMeeting(piece, end, patch, patch.carried, tolerance);
+  if (before == 0) return;
+  for (const std::array<Index, 3>& face : patch.faces) {
+    Vec3 now[3];
+    shiftedFace(patch, end, face, {}, now);
+    if (TriangleAxes(piece, now, nullptr, tolerance).meets()) join(face);
+  }
+  for (int growth = 0; growth < kMostGrowths; ++growth) {
+    bool grew = false;
+    for (const std::array<Index, 3>& face : patch.faces) {
+      if (!anyInGroup(patch, face)) continue;
+      Vec3 local[3];
+      for (int k = 0; k < 3; ++k) {
+        local[k] = end.applyInverse(patch.inCluster[face[k]] != 0 ? patch.carried[face[k]] : patch.positions[face[k]]);
+      }
+      if (TriangleAxes(piece, local, nullptr, tolerance).meets()) grew = join(face) || grew;
+    }
+    if (!grew) break;
+  }
+  if (facesMeeting(piece, end, patch, patch.carried, tolerance) >= before) return;
+  for (Index v = 0; v < vertexCount; ++v) {
+    if (patch.inCluster[v] == 0) continue;
+    patch.directions[v] = normalizedOrZero(patch.carried[v] - patch.positions[v]);
+    patch.positions[v] = patch.carried[v];
+    patch.moved[v] = 1;
+    patch.movedInRound[v] = std::max(patch.movedInRound[v], 0);
+  }
+}
+
 }  // namespace
 
 PieceMotion::PieceMotion(const Pose& bodyStart, const Pose& bodyEnd, Real maxTurnPerSample, const Pose& inBody)
@@ -685,6 +755,7 @@ SeparationCounts separateFromPiece(const ToolModel& piece, const PieceMotion& mo
   // What is left, measured as the judge would: half the clearance forgives rounding. A face that
   // met nothing in the first round, none of whose nodes moved since, still meets nothing.
   const Real tolerance = clearance / 2;
+  if (counts.rounds == std::max(1, settings.maxRounds)) carryStuckFacesWithPiece(piece, motion, tolerance, patch);
   // A movable node the first round judged and left, and nothing moved since, is outside.
   for (Index v = 0; v < vertexCount; ++v) {
     if (patch.movedInRound[v] < 0 && patch.inverseMasses[v] > 0) continue;

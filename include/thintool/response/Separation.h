@@ -84,6 +84,7 @@ struct SeparationPatch {
   std::vector<unsigned char> faceMet;
   /// Scratch of the stage: the vertices moved together when the rounds leave faces pierced.
   std::vector<unsigned char> inCluster;
+  std::vector<Vec3> carried;  ///< scratch: where the last resort would carry each node of the group
 
   Index vertexCount() const { return static_cast<Index>(positions.size()); }
   /// The per-vertex arrays agree and every face's vertices are in range: what addVertex and the
