@@ -302,14 +302,19 @@ void SoftBodySolver::solveConstraints(btScalar timeStep) {
     }
   }
   // One piece's moves can push soft features into another (two jaws, two tools): the pieces take
-  // turns until a pass moves nothing, or a pass had a single piece near soft features.
+  // turns until a pass moves nothing, or a pass had a single piece near soft features. Pieces
+  // still pushing faces into each other after the last pass leave them to the last resort, which
+  // carries what meets a piece with it from the start of the step, where it met none.
   for (int pass = 0; pass < kMostPasses; ++pass) {
     m_piecesNear = 0;
     bool moved = false;
     for (Tool* tool : tools) {
-      moved = separate(*tool) || moved;
+      moved = separate(*tool, false) || moved;
     }
     if (!moved || m_piecesNear <= 1) break;
+    if (pass + 1 == kMostPasses) {
+      for (Tool* tool : tools) separate(*tool, true);
+    }
   }
   const auto guardStart = Clock::now();
   guardEnergy();
@@ -454,7 +459,7 @@ void SoftBodySolver::guardEnergy() {
   }
 }
 
-bool SoftBodySolver::separate(Tool& tool) {
+bool SoftBodySolver::separate(Tool& tool, bool lastResort) {
   const auto start = std::chrono::steady_clock::now();
   const SeparationSettings& settings = tool.m_options.separation;
   const Pose now = toPose(tool.body().getWorldTransform());
@@ -469,7 +474,7 @@ bool SoftBodySolver::separate(Tool& tool) {
     for (int s = 0; s < m_softBodySet.size(); ++s) {
       btSoftBody& softBody = *m_softBodySet[s];
       if (detail::ignores(softBody, tool.body()) || !detail::lastWordActsOn(detail::stockReason(softBody))) continue;
-      const SeparationCounts piece = separatePiece(tool, tool.piece(p), motion, softBody);
+      const SeparationCounts piece = separatePiece(tool, tool.piece(p), motion, softBody, lastResort);
       moved = moved || piece.nodesMoved > 0 || piece.facesMoved > 0;
       counts.accumulate(piece);
     }
@@ -600,7 +605,7 @@ void SoftBodySolver::findBackings(const btSoftBody& softBody) {
 }
 
 SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piece, const PieceMotion& motion,
-                                               btSoftBody& softBody) {
+                                               btSoftBody& softBody, bool lastResort) {
   const Real clearance = tool.m_options.separation.clearance;
   const Aabb swept = sweptBounds(piece.bounds, motion).expanded(clearance);
   const int nodeCount = softBody.m_nodes.size();
@@ -679,7 +684,9 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
   // those of every moved node join the patch, and the stage runs again, until none is missing.
   SeparationCounts counts;
   for (int extension = 0;; ++extension) {
-    const SeparationCounts run = separateFromPiece(piece, motion, tool.m_options.separation, m_patch);
+    const SeparationSettings& settings = tool.m_options.separation;
+    const SeparationCounts run = lastResort ? carryMeetingFaces(piece, motion, settings, m_patch)
+                                            : separateFromPiece(piece, motion, settings, m_patch);
     counts.nodesMoved += run.nodesMoved;
     counts.facesMoved += run.facesMoved;
     counts.nodesInside = run.nodesInside;

@@ -596,9 +596,11 @@ int facesMeeting(const ToolModel& piece, const Pose& end, const SeparationPatch&
 // whose nodes all go along is clear again, whatever the turn; a face with some nodes left behind
 // brings them along, and the group grows until no face it touches meets the piece. The nodes move
 // as the tool's surface does, no faster; none can have passed through the piece, which they never
-// moved against. Applied only if fewer faces then meet the piece than before.
-void carryStuckFacesWithPiece(const ToolModel& piece, const PieceMotion& motion, Real tolerance,
-                              SeparationPatch& patch) {
+// moved against. Applied only if fewer faces then meet the piece than before, and, with
+// sparePinnedFaces, only if no face the group touches has a pinned node: such a face cannot come
+// along, and another piece of the tool, which this one cannot see, may then find it in its way.
+Index carryStuckFacesWithPiece(const ToolModel& piece, const PieceMotion& motion, Real tolerance,
+                               bool sparePinnedFaces, SeparationPatch& patch) {
   constexpr int kMostGrowths = 16;
   const Pose& end = motion.end();
   const Index vertexCount = patch.vertexCount();
@@ -616,7 +618,7 @@ void carryStuckFacesWithPiece(const ToolModel& piece, const PieceMotion& motion,
     return grew;
   };
   const int before = facesMeeting(piece, end, patch, patch.carried, tolerance);
-  if (before == 0) return;
+  if (before == 0) return 0;
   for (const std::array<Index, 3>& face : patch.faces) {
     Vec3 now[3];
     shiftedFace(patch, end, face, {}, now);
@@ -634,14 +636,22 @@ void carryStuckFacesWithPiece(const ToolModel& piece, const PieceMotion& motion,
     }
     if (!grew) break;
   }
-  if (facesMeeting(piece, end, patch, patch.carried, tolerance) >= before) return;
+  if (facesMeeting(piece, end, patch, patch.carried, tolerance) >= before) return 0;
+  if (sparePinnedFaces) {
+    for (const std::array<Index, 3>& face : patch.faces) {
+      if (anyInGroup(patch, face) && hasPinnedNode(patch, face)) return 0;
+    }
+  }
+  Index carried = 0;
   for (Index v = 0; v < vertexCount; ++v) {
     if (patch.inCluster[v] == 0) continue;
     patch.directions[v] = normalizedOrZero(patch.carried[v] - patch.positions[v]);
     patch.positions[v] = patch.carried[v];
     patch.moved[v] = 1;
     patch.movedInRound[v] = std::max(patch.movedInRound[v], 0);
+    ++carried;
   }
+  return carried;
 }
 
 }  // namespace
@@ -755,7 +765,9 @@ SeparationCounts separateFromPiece(const ToolModel& piece, const PieceMotion& mo
   // What is left, measured as the judge would: half the clearance forgives rounding. A face that
   // met nothing in the first round, none of whose nodes moved since, still meets nothing.
   const Real tolerance = clearance / 2;
-  if (counts.rounds == std::max(1, settings.maxRounds)) carryStuckFacesWithPiece(piece, motion, tolerance, patch);
+  if (counts.rounds == std::max(1, settings.maxRounds)) {
+    counts.nodesMoved += carryStuckFacesWithPiece(piece, motion, tolerance, false, patch);
+  }
   // A movable node the first round judged and left, and nothing moved since, is outside.
   for (Index v = 0; v < vertexCount; ++v) {
     if (patch.movedInRound[v] < 0 && patch.inverseMasses[v] > 0) continue;
@@ -764,6 +776,27 @@ SeparationCounts separateFromPiece(const ToolModel& piece, const PieceMotion& mo
   for (std::size_t f = 0; f < patch.faces.size(); ++f) {
     const std::array<Index, 3>& face = patch.faces[f];
     if (patch.faceMet[f] == 0 && !touched(face, 0)) continue;
+    Vec3 now[3];
+    for (int k = 0; k < 3; ++k) now[k] = end.applyInverse(patch.positions[face[k]]);
+    if (TriangleAxes(piece, now, nullptr, tolerance).meets()) ++counts.facesPierced;
+  }
+  return counts;
+}
+
+SeparationCounts carryMeetingFaces(const ToolModel& piece, const PieceMotion& motion,
+                                   const SeparationSettings& settings, SeparationPatch& patch) {
+  SeparationCounts counts;
+  const Index vertexCount = patch.vertexCount();
+  THINTOOL_ASSERT(patch.consistent());
+  if (vertexCount == 0) return counts;
+  const Real tolerance = settings.clearance / 2;
+  patch.movedInRound.assign(vertexCount, -1);
+  counts.nodesMoved = carryStuckFacesWithPiece(piece, motion, tolerance, true, patch);
+  const Pose& end = motion.end();
+  for (Index v = 0; v < vertexCount; ++v) {
+    if (outsideDistance(piece.planes, end.applyInverse(patch.positions[v])) < -tolerance) ++counts.nodesInside;
+  }
+  for (const std::array<Index, 3>& face : patch.faces) {
     Vec3 now[3];
     for (int k = 0; k < 3; ++k) now[k] = end.applyInverse(patch.positions[face[k]]);
     if (TriangleAxes(piece, now, nullptr, tolerance).meets()) ++counts.facesPierced;

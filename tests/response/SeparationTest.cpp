@@ -298,5 +298,63 @@ TEST(Separation, NoFaceMoveTakesANodePastItsPlaceCarriedWithThePiece) {
   }
 }
 
+TEST(Separation, TheLastResortCarriesTheFacesThatMeetThePieceWithIt) {
+  // The plate comes down 10 cm onto a face 1 cm above it, which the solver leaves inside it, and a
+  // second face shares two of its nodes, its third beside the plate and below it. Carried with the
+  // plate, the first face ends 1 cm above it again; the second would then cross the plate's rim,
+  // so its third node comes along too.
+  const ToolModel piece = plate();
+  Patch p;
+  const Vec3 drop{0, -0.1, 0};
+  const Vec3 start[4] = {{-0.05, 0.12, -0.05}, {0.1, 0.12, -0.05}, {0, 0.12, 0.05}, {0.3, 0.12, 0}};
+  const Vec3 end[4] = {{-0.05, 0.005, -0.05}, {0.1, 0.005, -0.05}, {0, 0.005, 0.05}, {0.3, -0.05, 0}};
+  Index v[4];
+  for (int k = 0; k < 4; ++k) v[k] = p.node(start[k], end[k]);
+  p.patch.faces.push_back({v[0], v[1], v[2]});
+  p.patch.faces.push_back({v[1], v[3], v[2]});
+  const SeparationCounts counts = carryMeetingFaces(piece, PieceMotion(at({0, 0.1, 0}), Pose{}, 0.1), {}, p.patch);
+  EXPECT_EQ(counts.nodesMoved, 4u);
+  EXPECT_EQ(counts.facesPierced, 0u);
+  EXPECT_EQ(counts.nodesInside, 0u);
+  for (int k = 0; k < 4; ++k) {
+    EXPECT_NEAR(length(p.patch.positions[v[k]] - (start[k] + drop)), 0, 1e-12) << "node " << k;
+    EXPECT_EQ(p.patch.moved[v[k]], 1);
+  }
+}
+
+TEST(Separation, TheLastResortMovesNothingWhereAPinnedNodeKeepsTheFaceInThePiece) {
+  // The same fall with one node of the face pinned where the plate now is: no place of the other
+  // two clears the face, and they stay where the solver left them; the face is counted.
+  const ToolModel piece = plate();
+  Patch p;
+  const Vec3 start[3] = {{-0.05, 0.12, -0.05}, {0.1, 0.12, -0.05}, {0, 0.005, 0.05}};
+  const Vec3 end[3] = {{-0.05, 0.005, -0.05}, {0.1, 0.005, -0.05}, {0, 0.005, 0.05}};
+  Index v[3];
+  for (int k = 0; k < 3; ++k) v[k] = p.node(start[k], end[k], k == 2 ? 0 : 1);
+  p.patch.faces.push_back({v[0], v[1], v[2]});
+  const SeparationCounts counts = carryMeetingFaces(piece, PieceMotion(at({0, 0.1, 0}), Pose{}, 0.1), {}, p.patch);
+  EXPECT_EQ(counts.nodesMoved, 0u);
+  EXPECT_EQ(counts.facesPierced, 1u);
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(p.patch.positions[v[k]], end[k]) << "node " << k;
+}
+
+TEST(Separation, TheLastResortLeavesAGroupThatTouchesAFaceWithAPinnedNode) {
+  // The fall of the first test, with a third face joining two of the face's nodes to a node pinned
+  // beside the plate: that face cannot come along, and another piece of the tool might meet it,
+  // so nothing moves and the face in the plate is counted.
+  const ToolModel piece = plate();
+  Patch p;
+  const Vec3 start[4] = {{-0.05, 0.12, -0.05}, {0.1, 0.12, -0.05}, {0, 0.12, 0.05}, {0.5, 0.12, 0}};
+  const Vec3 end[4] = {{-0.05, 0.005, -0.05}, {0.1, 0.005, -0.05}, {0, 0.005, 0.05}, {0.5, 0.12, 0}};
+  Index v[4];
+  for (int k = 0; k < 4; ++k) v[k] = p.node(start[k], end[k], k == 3 ? 0 : 1);
+  p.patch.faces.push_back({v[0], v[1], v[2]});
+  p.patch.faces.push_back({v[1], v[3], v[2]});
+  const SeparationCounts counts = carryMeetingFaces(piece, PieceMotion(at({0, 0.1, 0}), Pose{}, 0.1), {}, p.patch);
+  EXPECT_EQ(counts.nodesMoved, 0u);
+  EXPECT_GE(counts.facesPierced, 1u);
+  for (int k = 0; k < 4; ++k) EXPECT_EQ(p.patch.positions[v[k]], end[k]) << "node " << k;
+}
+
 }  // namespace
 }  // namespace thintool

@@ -66,9 +66,11 @@ class SoftBodySolver : public btDefaultSoftBodySolver {
   // After the last word: the guarded bodies' velocities brought within their bounds.
   void guardEnergy();
 
-  // One pass of the tool's pieces over the soft bodies; returns whether it moved anything.
-  bool separate(Tool& tool);
-  SeparationCounts separatePiece(Tool& tool, const ToolModel& piece, const PieceMotion& motion, btSoftBody& softBody);
+  // One pass of the tool's pieces over the soft bodies; returns whether it moved anything. With
+  // lastResort, each piece only carries the faces that still meet it (carryMeetingFaces).
+  bool separate(Tool& tool, bool lastResort);
+  SeparationCounts separatePiece(Tool& tool, const ToolModel& piece, const PieceMotion& motion, btSoftBody& softBody,
+                                 bool lastResort);
 
   // What the gather keeps per soft body. The faces of each node (CSR), rebuilt when the body's
   // node or face count changes. And a bound on how far a face's box (its nodes at the start and

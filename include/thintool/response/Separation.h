@@ -176,6 +176,16 @@ class PieceMotion {
 SeparationCounts separateFromPiece(const ToolModel& piece, const PieceMotion& motion,
                                    const SeparationSettings& settings, SeparationPatch& patch);
 
+/// The last resort alone, for a tool whose pieces keep undoing each other's moves (two jaws with a
+/// face between them): the movable nodes of the faces that meet the piece at the end of the step
+/// go where they stood in the piece's frame at its start, with the nodes of the faces that would
+/// then meet it, as separateFromPiece does when its rounds run out. The pieces of one rigid body
+/// share that motion, so a node carried by one is where every other piece left it room at the
+/// start. A group that touches a face with a pinned node stays, since that face cannot come along
+/// and another piece may meet it. Writes positions and moved; returns what it did and what is left.
+SeparationCounts carryMeetingFaces(const ToolModel& piece, const PieceMotion& motion,
+                                   const SeparationSettings& settings, SeparationPatch& patch);
+
 /// Whether triangle (a, b, c) and the piece, all in the piece's frame, overlap by more than
 /// tolerance along every separating axis.
 bool triangleMeetsPiece(const ToolModel& piece, const Vec3& a, const Vec3& b, const Vec3& c, Real tolerance);
