@@ -580,15 +580,12 @@ void SoftBodySolver::surveyNodes(SoftBodyCache& cache, const btSoftBody& softBod
 
 void SoftBodySolver::stopAtPinnedNodes(btRigidBody& tool, const ToolModel& piece, const Pose& pieceEnd,
                                        Real inverseStep, const SoftBodyCache& cache, const btSoftBody& softBody) {
-  for (int round = 0; round < detail::kStopRounds; ++round) {
-    btScalar largest = 0;
+  const auto forEachPinned = [&](const auto& visit) {
     for (const Index id : cache.pinned) {
-      if (id >= static_cast<Index>(softBody.m_nodes.size())) continue;
-      const Vec3 at = toVec3(softBody.m_nodes[static_cast<int>(id)].m_x);
-      largest = btMax(largest, detail::stopShortOfPinnedNode(tool, piece, pieceEnd, at, inverseStep, false));
+      if (id < static_cast<Index>(softBody.m_nodes.size())) visit(toVec3(softBody.m_nodes[static_cast<int>(id)].m_x));
     }
-    if (largest <= detail::kSettledStopImpulse) break;
-  }
+  };
+  detail::stopShortOfPinnedNodes(tool, piece, pieceEnd, forEachPinned, inverseStep, false);
 }
 
 void SoftBodySolver::findBackings(const btSoftBody& softBody) {

@@ -231,12 +231,11 @@ struct ToolAlgorithm::PieceStep {
   Real fullSkin = 0;  ///< ToolOptions::skin, or the soft body's margin (m)
   Real skin = 0;      ///< what the pair keeps this step (pairSkin), at most fullSkin (m)
   Index facesWalked = 0;  ///< soft faces the gather's walk met
+  Real skinGrowthSpeed = 0;  ///< ToolOptions::skinGrowthSpeed (m/s)
   Clock::time_point start{};
 
   // What the core's stages read of the step.
-  StepContext context(Real skinGrowthSpeed) const {
-    return {model, previousPose, pose, Real(timeStep), skin, skinGrowthSpeed};
-  }
+  StepContext context() const { return {model, previousPose, pose, Real(timeStep), skin, skinGrowthSpeed}; }
 };
 
 void ToolAlgorithm::processCollision(const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1,
@@ -304,6 +303,7 @@ void ToolAlgorithm::processPiece(PieceStep& step, const btCollisionObjectWrapper
 void ToolAlgorithm::processValidPiece(PieceStep& step) {
   step.start = Clock::now();
   step.timeStep = step.softBody.m_sst.sdt;
+  step.skinGrowthSpeed = m_tool.m_options.skinGrowthSpeed;
   prepareBuffers(step);
   gather(step);
   detect(step);
@@ -380,7 +380,7 @@ void ToolAlgorithm::detect(PieceStep& step) {
       patch.checkedPositions[v] =
           state.lastStep[id] + 1 == state.step ? state.lastPositions[id] : patch.previousPositions[v];
     }
-    detectSwept(step.context(m_tool.m_options.skinGrowthSpeed), patch, state.sides, m_tool.m_sweptWorkspace,
+    detectSwept(step.context(), patch, state.sides, m_tool.m_sweptWorkspace,
                 state.detection);
   } else {
     const SoftBodyRayQuery reverseQuery(step.softBody, state.traversalStack);
@@ -389,7 +389,7 @@ void ToolAlgorithm::detect(PieceStep& step) {
     parameters.reverseRayLength = parameters.filters.reverseRayLength.value_or(
         length(toVec3(step.softBody.m_bounds[1] - step.softBody.m_bounds[0])));
     parameters.reverseQuery = &reverseQuery;
-    detectContacts(step.context(m_tool.m_options.skinGrowthSpeed), state.patch, parameters, state.history,
+    detectContacts(step.context(), state.patch, parameters, state.history,
                    state.detection);
   }
   state.detection.counters.facesWalked = step.facesWalked;
@@ -404,7 +404,7 @@ void ToolAlgorithm::respond(PieceStep& step) {
     response.friction.staticCoefficient = pairFriction(step.softBody, step.toolBody);
     response.friction.kineticCoefficient = response.friction.staticCoefficient;
   }
-  computeResponse(step.context(m_tool.m_options.skinGrowthSpeed), state.patch, state.detection.contacts, response,
+  computeResponse(step.context(), state.patch, state.detection.contacts, response,
                   state.response);
   state.previousPose = step.pose;
   state.hasPreviousPose = true;
@@ -436,7 +436,7 @@ void ToolAlgorithm::write(PieceStep& step) {
   PairState& state = step.state;
   btRigidBody* dynamicBody = m_tool.dynamicBody();
   if (options.response.kind == ResponseKind::Constraint && options.response.holdInSolver) {
-    computeHolds(step.context(m_tool.m_options.skinGrowthSpeed), state.patch, step.swept, state.response,
+    computeHolds(step.context(), state.patch, step.swept, state.response,
                  state.holds);
     // Only once the response has moved a node: the pass also changes how the body's other
     // contacts are solved (a pressure body on the ground shook at twice stock's speed), which a
@@ -466,14 +466,12 @@ void ToolAlgorithm::write(PieceStep& step) {
     const Pose& now = step.swept ? step.previousPose : step.pose;
     const SoftPatch& patch = state.patch;
     const Real inverseStep = Real(1) / Real(step.timeStep);
-    for (int round = 0; round < kStopRounds; ++round) {
-      btScalar largest = 0;
+    const auto forEachPinned = [&](const auto& visit) {
       for (Index v = 0; v < patch.vertexCount(); ++v) {
-        if (patch.inverseMasses[v] > 0) continue;
-        largest = btMax(largest, stopShortOfPinnedNode(*dynamicBody, step.model, now, patch.positions[v], inverseStep, true));
+        if (!(patch.inverseMasses[v] > 0)) visit(patch.positions[v]);
       }
-      if (largest <= kSettledStopImpulse) break;
-    }
+    };
+    stopShortOfPinnedNodes(*dynamicBody, step.model, now, forEachPinned, inverseStep, true);
   }
 }
 
@@ -490,7 +488,7 @@ void ToolAlgorithm::computeForces(PieceStep& step, btRigidBody* reactingBody) {
     state.rigidFit = fitRigidMotion(rest, state.anchorPositions, state.rigidFit);
   }
   state.force.history.resize(static_cast<Index>(softBody.m_faces.size()));
-  computeContactForces(step.context(m_tool.m_options.skinGrowthSpeed), state.patch, state.detection.contacts,
+  computeContactForces(step.context(), state.patch, state.detection.contacts,
                        {settings, rest, state.rigidFit}, state.force);
   if (reactingBody == nullptr) {
     return;

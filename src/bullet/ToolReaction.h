@@ -34,11 +34,26 @@ btScalar applyNodeReaction(btRigidBody& tool, const btVector3& nodePosition, con
 /// a position solve would move it. The face's plane bounds the node's side of the piece, so the
 /// limit is conservative past an edge. forcesPending: the tool's accumulated force and torque are
 /// yet to act over that step (in the collision pass, before Bullet's solver adds them). Returns the
-/// impulse applied (N s). A stop at one node can turn the tool into another: callers sweep their
-/// nodes until no stop applies more than kSettledStopImpulse, or kStopRounds times.
+/// impulse applied (N s).
 btScalar stopShortOfPinnedNode(btRigidBody& tool, const ToolModel& piece, const Pose& pieceNow, const Vec3& node,
                                Real inverseStep, bool forcesPending);
-inline constexpr int kStopRounds = 8;
-inline constexpr btScalar kSettledStopImpulse = btScalar(1e-7);
+
+/// stopShortOfPinnedNode at every pinned node forEachPinned(visit) visits (visit(const Vec3&),
+/// world). A stop at one node can turn the tool into another: the nodes are swept until no stop
+/// applies more than a settled impulse, at most eight times.
+template <typename ForEachPinned>
+void stopShortOfPinnedNodes(btRigidBody& tool, const ToolModel& piece, const Pose& pieceNow,
+                            const ForEachPinned& forEachPinned, Real inverseStep, bool forcesPending) {
+  constexpr int kMostSweeps = 8;
+  constexpr btScalar kSettledImpulse = btScalar(1e-7);  // N s
+  for (int sweep = 0; sweep < kMostSweeps; ++sweep) {
+    btScalar largest = 0;
+    forEachPinned([&](const Vec3& node) {
+      const btScalar impulse = stopShortOfPinnedNode(tool, piece, pieceNow, node, inverseStep, forcesPending);
+      if (impulse > largest) largest = impulse;
+    });
+    if (largest <= kSettledImpulse) break;
+  }
+}
 
 }  // namespace thintool::detail

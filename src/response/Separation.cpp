@@ -574,20 +574,42 @@ void moveStuckFacesTogether(const ToolModel& piece, const PieceMotion& motion, c
   }
 }
 
-// How many faces meet the piece (grown by tolerance) at the end of the step, the group's nodes
-// (patch.inCluster) at `carried` and the others where they are.
-int facesMeeting(const ToolModel& piece, const Pose& end, const SeparationPatch& patch,
-                 const std::vector<Vec3>& carried, Real tolerance) {
+// Whether the face meets the piece (grown by tolerance) at the end of the step, the group's nodes
+// (patch.inCluster) at patch.carried and the others where they are.
+bool meetsWithGroupCarried(const ToolModel& piece, const Pose& end, const SeparationPatch& patch,
+                           const std::array<Index, 3>& face, Real tolerance) {
+  Vec3 local[3];
+  for (int k = 0; k < 3; ++k) {
+    const Index v = face[k];
+    local[k] = end.applyInverse(patch.inCluster[v] != 0 ? patch.carried[v] : patch.positions[v]);
+  }
+  return TriangleAxes(piece, local, nullptr, tolerance).meets();
+}
+
+int facesMeetingWithGroupCarried(const ToolModel& piece, const Pose& end, const SeparationPatch& patch,
+                                 Real tolerance) {
   int meeting = 0;
   for (const std::array<Index, 3>& face : patch.faces) {
-    Vec3 local[3];
-    for (int k = 0; k < 3; ++k) {
-      const Vec3& at = patch.inCluster[face[k]] != 0 ? carried[face[k]] : patch.positions[face[k]];
-      local[k] = end.applyInverse(at);
-    }
-    meeting += TriangleAxes(piece, local, nullptr, tolerance).meets() ? 1 : 0;
+    meeting += meetsWithGroupCarried(piece, end, patch, face, tolerance) ? 1 : 0;
   }
   return meeting;
+}
+
+// What is left at the end of the step, measured as the judge would: half the clearance forgives
+// rounding. Nodes and faces `known` to be outside are not measured.
+template <typename KnownNode, typename KnownFace>
+void countWhatIsLeft(const ToolModel& piece, const Pose& end, const SeparationPatch& patch, Real tolerance,
+                     const KnownNode& knownOutside, const KnownFace& knownClear, SeparationCounts& counts) {
+  for (Index v = 0; v < patch.vertexCount(); ++v) {
+    if (knownOutside(v)) continue;
+    if (outsideDistance(piece.planes, end.applyInverse(patch.positions[v])) < -tolerance) ++counts.nodesInside;
+  }
+  for (std::size_t f = 0; f < patch.faces.size(); ++f) {
+    if (knownClear(f)) continue;
+    Vec3 now[3];
+    for (int k = 0; k < 3; ++k) now[k] = end.applyInverse(patch.positions[patch.faces[f][k]]);
+    if (TriangleAxes(piece, now, nullptr, tolerance).meets()) ++counts.facesPierced;
+  }
 }
 
 // The last resort, when the faces still pierced after the rounds and moveStuckFacesTogether have no
@@ -617,7 +639,7 @@ Index carryStuckFacesWithPiece(const ToolModel& piece, const PieceMotion& motion
     }
     return grew;
   };
-  const int before = facesMeeting(piece, end, patch, patch.carried, tolerance);
+  const int before = facesMeetingWithGroupCarried(piece, end, patch, tolerance);
   if (before == 0) return 0;
   for (const std::array<Index, 3>& face : patch.faces) {
     Vec3 now[3];
@@ -627,16 +649,13 @@ Index carryStuckFacesWithPiece(const ToolModel& piece, const PieceMotion& motion
   for (int growth = 0; growth < kMostGrowths; ++growth) {
     bool grew = false;
     for (const std::array<Index, 3>& face : patch.faces) {
-      if (!anyInGroup(patch, face)) continue;
-      Vec3 local[3];
-      for (int k = 0; k < 3; ++k) {
-        local[k] = end.applyInverse(patch.inCluster[face[k]] != 0 ? patch.carried[face[k]] : patch.positions[face[k]]);
+      if (anyInGroup(patch, face) && meetsWithGroupCarried(piece, end, patch, face, tolerance)) {
+        grew = join(face) || grew;
       }
-      if (TriangleAxes(piece, local, nullptr, tolerance).meets()) grew = join(face) || grew;
     }
     if (!grew) break;
   }
-  if (facesMeeting(piece, end, patch, patch.carried, tolerance) >= before) return 0;
+  if (facesMeetingWithGroupCarried(piece, end, patch, tolerance) >= before) return 0;
   if (sparePinnedFaces) {
     for (const std::array<Index, 3>& face : patch.faces) {
       if (anyInGroup(patch, face) && hasPinnedNode(patch, face)) return 0;
@@ -762,24 +781,16 @@ SeparationCounts separateFromPiece(const ToolModel& piece, const PieceMotion& mo
     if (round + 1 == std::max(1, settings.maxRounds)) moveStuckFacesTogether(piece, motion, poses, clearance, patch);
   }
 
-  // What is left, measured as the judge would: half the clearance forgives rounding. A face that
-  // met nothing in the first round, none of whose nodes moved since, still meets nothing.
   const Real tolerance = clearance / 2;
   if (counts.rounds == std::max(1, settings.maxRounds)) {
     counts.nodesMoved += carryStuckFacesWithPiece(piece, motion, tolerance, false, patch);
   }
-  // A movable node the first round judged and left, and nothing moved since, is outside.
-  for (Index v = 0; v < vertexCount; ++v) {
-    if (patch.movedInRound[v] < 0 && patch.inverseMasses[v] > 0) continue;
-    if (outsideDistance(piece.planes, end.applyInverse(patch.positions[v])) < -tolerance) ++counts.nodesInside;
-  }
-  for (std::size_t f = 0; f < patch.faces.size(); ++f) {
-    const std::array<Index, 3>& face = patch.faces[f];
-    if (patch.faceMet[f] == 0 && !touched(face, 0)) continue;
-    Vec3 now[3];
-    for (int k = 0; k < 3; ++k) now[k] = end.applyInverse(patch.positions[face[k]]);
-    if (TriangleAxes(piece, now, nullptr, tolerance).meets()) ++counts.facesPierced;
-  }
+  // A movable node the first round judged and left, and nothing moved since, is outside; a face
+  // that met nothing in the first round, none of whose nodes moved since, still meets nothing.
+  countWhatIsLeft(
+      piece, end, patch, tolerance,
+      [&](Index v) { return patch.movedInRound[v] < 0 && patch.inverseMasses[v] > 0; },
+      [&](std::size_t f) { return patch.faceMet[f] == 0 && !touched(patch.faces[f], 0); }, counts);
   return counts;
 }
 
@@ -792,15 +803,8 @@ SeparationCounts carryMeetingFaces(const ToolModel& piece, const PieceMotion& mo
   const Real tolerance = settings.clearance / 2;
   patch.movedInRound.assign(vertexCount, -1);
   counts.nodesMoved = carryStuckFacesWithPiece(piece, motion, tolerance, true, patch);
-  const Pose& end = motion.end();
-  for (Index v = 0; v < vertexCount; ++v) {
-    if (outsideDistance(piece.planes, end.applyInverse(patch.positions[v])) < -tolerance) ++counts.nodesInside;
-  }
-  for (const std::array<Index, 3>& face : patch.faces) {
-    Vec3 now[3];
-    for (int k = 0; k < 3; ++k) now[k] = end.applyInverse(patch.positions[face[k]]);
-    if (TriangleAxes(piece, now, nullptr, tolerance).meets()) ++counts.facesPierced;
-  }
+  const auto nothingKnown = [](auto) { return false; };
+  countWhatIsLeft(piece, motion.end(), patch, tolerance, nothingKnown, nothingKnown, counts);
   return counts;
 }
 

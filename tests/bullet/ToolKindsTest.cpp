@@ -15,6 +15,8 @@
 
 #include <gtest/gtest.h>
 
+#include <memory>
+
 namespace thintool::scenes {
 namespace {
 
@@ -124,87 +126,82 @@ TEST(ToolKinds, ADynamicToolSetDownByHandIsSweptFromThere) {
   EXPECT_EQ(above, 0) << "nodes the plate passed were left above its underside";
 }
 
-TEST(ToolKinds, APinnedNodeStopsAFastDynamicToolBeforeItReachesIt) {
-  // A hanging sheet, 1 m square in the plane x = 0, its middle node pinned and the rest free, and a
-  // 0.1 kg plate thrown face first at its middle at 20 m/s, 0.33 m a step at 60 Hz. The plate's
-  // first step ends 0.16 m short of the sheet, beyond the reach of that step's last word; its
-  // second would carry it through the pinned node, which nothing can move. The node must stop it
-  // there, as a wall would: at the end of the first step, from where the plate will be able to
-  // reach it in the next.
+// A hanging sheet, 1 m square in the plane x = 0, its middle node pinned and the rest free, and a
+// 0.1 kg plate 2 × 30 × 30 cm, face on to the sheet with its centre at x = plateX, registered as a
+// tool; no gravity.
+struct PinnedSheetAndPlate {
+  static constexpr int kMiddle = 12;  // the 5 × 5 patch's centre, at (0, 1, 0)
   SoftWorld soft{btVector3(0, 0, 0)};
-  btSoftBody* sheet = btSoftBodyHelpers::CreatePatch(soft.world.getWorldInfo(), btVector3(0, 0.5, -0.5),
-                                                     btVector3(0, 0.5, 0.5), btVector3(0, 1.5, -0.5),
-                                                     btVector3(0, 1.5, 0.5), 5, 5, 0, true);
-  sheet->getCollisionShape()->setMargin(0.01);
-  sheet->setTotalMass(0.1);
-  const int middle = 12;  // the 5 × 5 patch's centre, at (0, 1, 0)
-  ASSERT_LT(sheet->m_nodes[middle].m_x.distance(btVector3(0, 1, 0)), 1e-5);
-  sheet->setMass(middle, 0);
-  soft.world.addSoftBody(sheet);
-  btBoxShape plateShape(btVector3(0.01, 0.15, 0.15));
-  btVector3 inertia;
-  plateShape.calculateLocalInertia(0.1, inertia);
-  btDefaultMotionState motion(btTransform(btQuaternion::getIdentity(), btVector3(-0.5, 1, 0)));
-  btRigidBody plate(btRigidBody::btRigidBodyConstructionInfo(0.1, &motion, &plateShape, inertia));
-  plate.setActivationState(DISABLE_DEACTIVATION);
-  soft.world.addRigidBody(&plate);
-  plate.setGravity(btVector3(0, 0, 0));
-  addTool(soft.world, plate);
-  plate.setLinearVelocity(btVector3(20, 0, 0));
+  btSoftBody* sheet = nullptr;
+  btBoxShape plateShape{btVector3(0.01, 0.15, 0.15)};
+  btDefaultMotionState motion;
+  std::unique_ptr<btRigidBody> plate;
+
+  explicit PinnedSheetAndPlate(btScalar plateX)
+      : motion(btTransform(btQuaternion::getIdentity(), btVector3(plateX, 1, 0))) {
+    sheet = btSoftBodyHelpers::CreatePatch(soft.world.getWorldInfo(), btVector3(0, 0.5, -0.5),
+                                           btVector3(0, 0.5, 0.5), btVector3(0, 1.5, -0.5), btVector3(0, 1.5, 0.5),
+                                           5, 5, 0, true);
+    sheet->getCollisionShape()->setMargin(0.01);
+    sheet->setTotalMass(0.1);
+    sheet->setMass(kMiddle, 0);
+    soft.world.addSoftBody(sheet);
+    btVector3 inertia;
+    plateShape.calculateLocalInertia(0.1, inertia);
+    plate = std::make_unique<btRigidBody>(btRigidBody::btRigidBodyConstructionInfo(0.1, &motion, &plateShape, inertia));
+    plate->setActivationState(DISABLE_DEACTIVATION);
+    soft.world.addRigidBody(plate.get());
+    plate->setGravity(btVector3(0, 0, 0));
+    addTool(soft.world, *plate);
+  }
+  ~PinnedSheetAndPlate() {
+    removeTool(soft.world, *plate);
+    soft.world.removeRigidBody(plate.get());
+    soft.world.removeSoftBody(sheet);
+    delete sheet;
+  }
+  const btVector3& pinned() const { return sheet->m_nodes[kMiddle].m_x; }
+};
+
+TEST(ToolKinds, APinnedNodeStopsAFastDynamicToolBeforeItReachesIt) {
+  // The plate thrown face first at the sheet's middle at 20 m/s, 0.33 m a step at 60 Hz. Its first
+  // step ends 0.16 m short of the sheet, beyond the reach of that step's last word; its second
+  // would carry it through the pinned node, which nothing can move. The node must stop it there,
+  // as a wall would: at the end of the first step, from where the plate will be able to reach it
+  // in the next.
+  PinnedSheetAndPlate scene(-0.5);
+  ASSERT_LT(scene.pinned().distance(btVector3(0, 1, 0)), 1e-5);
+  scene.plate->setLinearVelocity(btVector3(20, 0, 0));
   const btScalar dt = btScalar(1) / 60;
   btScalar farthest = -1;
   for (int step = 0; step < 6; ++step) {
-    soft.world.stepSimulation(dt, 1, dt);
-    farthest = btMax(farthest, plate.getWorldTransform().getOrigin().x() + plateShape.getHalfExtentsWithMargin().x());
+    scene.soft.world.stepSimulation(dt, 1, dt);
+    farthest = btMax(farthest, scene.plate->getWorldTransform().getOrigin().x() +
+                                   scene.plateShape.getHalfExtentsWithMargin().x());
   }
   EXPECT_LT(farthest, btScalar(0.005)) << "the plate's front went past the pinned node at x = 0";
-  removeTool(soft.world, plate);
-  soft.world.removeRigidBody(&plate);
-  soft.world.removeSoftBody(sheet);
-  delete sheet;
 }
 
 TEST(ToolKinds, APinnedNodeHoldsOffADynamicToolPushedAgainstIt) {
-  // The same sheet and plate, the plate set 0.02 m from the sheet and pushed at it by a steady 2 N.
-  // The node's stop at the end of a step comes after the plate has moved; the next step's reactions
-  // to the free nodes come before it moves again, and alone they would let the push carry the plate
-  // over the node a step at a time. The plate may tip and slide off the node, as a plate pushed
-  // onto a point would, but the node must never end a step inside it.
-  SoftWorld soft{btVector3(0, 0, 0)};
-  btSoftBody* sheet = btSoftBodyHelpers::CreatePatch(soft.world.getWorldInfo(), btVector3(0, 0.5, -0.5),
-                                                     btVector3(0, 0.5, 0.5), btVector3(0, 1.5, -0.5),
-                                                     btVector3(0, 1.5, 0.5), 5, 5, 0, true);
-  sheet->getCollisionShape()->setMargin(0.01);
-  sheet->setTotalMass(0.1);
-  const int middle = 12;
-  sheet->setMass(middle, 0);
-  soft.world.addSoftBody(sheet);
-  btBoxShape plateShape(btVector3(0.01, 0.15, 0.15));
-  btVector3 inertia;
-  plateShape.calculateLocalInertia(0.1, inertia);
-  btDefaultMotionState motion(btTransform(btQuaternion::getIdentity(), btVector3(-0.03, 1, 0)));
-  btRigidBody plate(btRigidBody::btRigidBodyConstructionInfo(0.1, &motion, &plateShape, inertia));
-  plate.setActivationState(DISABLE_DEACTIVATION);
-  soft.world.addRigidBody(&plate);
-  plate.setGravity(btVector3(0, 0, 0));
-  addTool(soft.world, plate);
+  // The plate set 0.02 m from the sheet and pushed at it by a steady 2 N. The node's stop at the
+  // end of a step comes after the plate has moved; the next step's reactions to the free nodes
+  // come before it moves again, and alone they would let the push carry the plate over the node a
+  // step at a time. The plate may tip and slide off the node, as a plate pushed onto a point would,
+  // but the node must never end a step inside it.
+  PinnedSheetAndPlate scene(-0.03);
   const btScalar dt = btScalar(1) / 60;
-  const btVector3 half = plateShape.getHalfExtentsWithMargin();
+  const btVector3 half = scene.plateShape.getHalfExtentsWithMargin();
   btScalar closest = 1;  // the node's least distance outside the plate's faces (m); < 0: inside
   for (int step = 0; step < 60; ++step) {
-    plate.applyCentralForce(btVector3(2, 0, 0));
-    soft.world.stepSimulation(dt, 1, dt);
-    const btVector3 local = plate.getWorldTransform().invXform(sheet->m_nodes[middle].m_x);
+    scene.plate->applyCentralForce(btVector3(2, 0, 0));
+    scene.soft.world.stepSimulation(dt, 1, dt);
+    const btVector3 local = scene.plate->getWorldTransform().invXform(scene.pinned());
     btScalar outside = -1;
     for (int axis = 0; axis < 3; ++axis) outside = btMax(outside, btFabs(local[axis]) - half[axis]);
     closest = btMin(closest, outside);
   }
   EXPECT_LT(closest, btScalar(0.005)) << "the push should bring the plate to the node";
   EXPECT_GT(closest, btScalar(-0.001)) << "the pinned node ended a step inside the plate";
-  removeTool(soft.world, plate);
-  soft.world.removeRigidBody(&plate);
-  soft.world.removeSoftBody(sheet);
-  delete sheet;
 }
 
 TEST(ToolKinds, RegisteringAfterThePairExistsReroutesIt) {
