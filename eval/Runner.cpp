@@ -243,10 +243,10 @@ ToolOptions optionsFor(const SceneSpec& scene, const ToolSpec& tool) {
   options.force.enabled = scene.force;
   if (scene.friction.has_value()) {
     options.response.friction.enabled = *scene.friction;
-    options.response.friction.fromBodies = false;  // a scene's own friction is ThinTool's coefficients
+    options.bullet.frictionFromBodies = false;  // a scene's own friction is ThinTool's coefficients
   }
   options.separation.enabled = options.separation.enabled && scene.lastWord;
-  options.response.holdInSolver = options.response.holdInSolver && scene.holds;
+  options.bullet.holdInSolver = options.bullet.holdInSolver && scene.holds;
   options.energyGuard.enabled = options.energyGuard.enabled && scene.energyGuard;
   return options;
 }

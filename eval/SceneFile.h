@@ -138,10 +138,10 @@ struct SceneSpec {
   AlgorithmKind algorithm = AlgorithmKind::Swept;
   bool force = false;          ///< ThinTool: the Hunt–Crossley force (force error needs it)
   /// ThinTool's Coulomb friction at the tool. Unset, the library's default: each pair's coefficient
-  /// from the bodies (FrictionSettings::fromBodies); true, ThinTool's own coefficients; false, none.
+  /// from the bodies (BulletSettings::frictionFromBodies); true, ThinTool's own coefficients; false, none.
   std::optional<bool> friction;
   bool lastWord = true;        ///< ThinTool: the last word after the soft solver (ToolOptions::separation); "paper" and "ray-only" never have it
-  bool holds = true;           ///< ThinTool: the response's holds in the soft solver (ResponseSettings::holdInSolver)
+  bool holds = true;           ///< ThinTool: the response's holds in the soft solver (BulletSettings::holdInSolver)
   bool energyGuard = true;     ///< ThinTool: the energy guard after the soft solver (ToolOptions::energyGuard); "paper" and "ray-only" never have it
 };
 

@@ -33,7 +33,7 @@ inside the soft body, pierced faces, penetration deeper than 0.1 mm, non-finite 
   --seed-file F      seeds from a file, one a line; '#' starts a comment
   --algorithm X      swept (default), paper, ray-only, stock-A, stock-B or stock-E
   --no-last-word     ThinTool without its last word after Bullet's soft solve (ToolOptions::separation)
-  --no-holds         ThinTool without its holds in Bullet's soft solve (ResponseSettings::holdInSolver)
+  --no-holds         ThinTool without its holds in Bullet's soft solve (BulletSettings::holdInSolver)
   --no-energy-guard  ThinTool without its energy guard after Bullet's soft solve (ToolOptions::energyGuard)
   --verbose          print each scene's description and every step's ground truth
   --scenes DIR       where vessel.obj is (default: the source tree's eval/scenes)

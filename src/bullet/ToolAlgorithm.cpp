@@ -400,7 +400,7 @@ void ToolAlgorithm::respond(PieceStep& step) {
   PairState& state = step.state;
   ResponseSettings response = m_tool.m_options.response;
   response.guardNodes = response.guardNodes && !step.swept;  // swept detection tests every node itself
-  if (response.friction.enabled && response.friction.fromBodies) {
+  if (response.friction.enabled && m_tool.m_options.bullet.frictionFromBodies) {
     response.friction.staticCoefficient = pairFriction(step.softBody, step.toolBody);
     response.friction.kineticCoefficient = response.friction.staticCoefficient;
   }
@@ -435,7 +435,7 @@ void ToolAlgorithm::write(PieceStep& step) {
   const ToolOptions& options = m_tool.m_options;
   PairState& state = step.state;
   btRigidBody* dynamicBody = m_tool.dynamicBody();
-  if (options.response.kind == ResponseKind::Constraint && options.response.holdInSolver) {
+  if (options.response.kind == ResponseKind::Constraint && options.bullet.holdInSolver) {
     computeHolds(step.context(), state.patch, step.swept, state.response,
                  state.holds);
     // Only once the response has moved a node: the pass also changes how the body's other

@@ -104,7 +104,7 @@ TEST(ToolKinds, ADynamicToolSetDownByHandIsSweptFromThere) {
   // pass, so the last word must sweep that motion from where the plate was set down. Without the
   // solver's holds nothing else keeps the nodes it passed below it.
   SceneSettings settings;
-  settings.toolOptions.response.holdInSolver = false;
+  settings.toolOptions.bullet.holdInSolver = false;
   SoftBallScene scene(settings);
   scene.settle();
   const double halfThickness = scene.toolBox().halfExtents.y;

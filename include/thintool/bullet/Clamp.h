@@ -35,7 +35,7 @@ struct ClampSettings {
     ToolOptions options;
     // A grasp's own coefficients, not the soft body's: a jaw's grip is the clamp's design.
     options.response.friction.enabled = true;
-    options.response.friction.fromBodies = false;
+    options.bullet.frictionFromBodies = false;
     return options;
   }
 };

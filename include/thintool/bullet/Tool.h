@@ -127,7 +127,7 @@ struct ToolStepReport {
   Wrench wrench;
   /// Force (N) and torque about the tool body's origin (N·m) that the soft solver's stage put on
   /// the tool: the impulses Bullet's contact stage applied through the tool's holds
-  /// (ResponseSettings::holdInSolver), and the velocity changes of the nodes the last word moved,
+  /// (BulletSettings::holdInSolver), and the velocity changes of the nodes the last word moved,
   /// over the step. Most of a grasped body's weight reaches a jaw this way, not through wrench.
   /// Measured in a world whose soft-body solver is a thintool::SoftBodySolver; zero elsewhere.
   Wrench holdWrench;

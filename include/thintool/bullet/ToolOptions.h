@@ -46,6 +46,25 @@ struct EnergyGuardSettings {
   Real restingSpeed = 1;    ///< m/s, >= 0
 };
 
+/// What ThinTool does inside Bullet's soft solver and with Bullet's bodies: switches that only the
+/// Bullet glue reads; the core's stages never see them.
+struct BulletSettings {
+  /// Constraint response: give Bullet's soft solver one-sided plane contacts (btSoftBody::RContact)
+  /// that hold the moved nodes where the projection put them and, with swept detection, every
+  /// other node near the tool behind the tool face it is in front of (computeHolds). Without them
+  /// the links and the pressure of a squashed body pull nodes back into the tool within the step.
+  /// With friction, a node that sticks is held to the tool's surface motion (its hold is not
+  /// frictionless), and the soft bodies the tool touches get a contact pass after the links in each
+  /// of their position iterations (btSoftBody::m_cfg.m_psequence), so that the links of a grasped
+  /// body do not drag the held nodes along the jaws; a dynamic tool's soft bodies get the pass too.
+  bool holdInSolver = true;
+  /// With friction (response.friction.enabled): μs = μk = the soft body's m_cfg.kDF × the tool
+  /// body's getFriction(), per pair, as stock Bullet's node contact (btSoftBodyInternals.h,
+  /// CollideSDF_RS), which lets a node stick while its tangential motion is within that times its
+  /// normal motion. Off: response.friction's two coefficients.
+  bool frictionFromBodies = true;
+};
+
 struct ToolOptions {
   /// Names the tool in error messages and reports; empty picks "tool <n>".
   std::string name;
@@ -86,6 +105,7 @@ struct ToolOptions {
   EnergyGuardSettings energyGuard;
   /// The tissue's force on the tool (force/ContactForce.h): off by default.
   ForceSettings force;
+  BulletSettings bullet;
 
   /// The paper's algorithm as published: discrete rays, association, both checks, and no last
   /// word after the soft solver (set separation.enabled for the paper's detection with it).

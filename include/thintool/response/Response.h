@@ -59,15 +59,9 @@ enum class ResponseKind { Constraint, PaperForce, None };
 /// move otherwise (it slides). The normal move stands for the normal force, N = m·d/dt². Off, it
 /// costs nothing.
 ///
-/// With fromBodies, the Bullet glue takes Bullet's own coefficient for each pair: its node contact
-/// (btSoftBodyInternals.h, CollideSDF_RS) lets a node stick while its tangential motion is within
-/// fc times its normal motion and takes fc of the slip off otherwise, fc being the soft body's kDF
-/// times the rigid body's friction. The core reads only the two coefficients.
+/// The Bullet glue can put its own coefficients in their place (BulletSettings::frictionFromBodies).
 struct FrictionSettings {
   bool enabled = false;
-  /// Bullet glue: μs = μk = the soft body's m_cfg.kDF × the tool body's getFriction(), per pair,
-  /// as stock Bullet's node contact. Off: the two coefficients below.
-  bool fromBodies = true;
   Real staticCoefficient = 0.8;   ///< μs (>= 0)
   Real kineticCoefficient = 0.6;  ///< μk (>= 0, <= μs)
 };
@@ -78,16 +72,7 @@ struct ResponseSettings {
   Real stiffness = 1000;
   /// Constraint: the node guard. Off, only nodes of faces the rays hit are moved.
   bool guardNodes = true;
-  /// Constraint: give Bullet's soft solver one-sided plane contacts (btSoftBody::RContact) that
-  /// hold the moved nodes where the projection put them and, with swept detection, every other
-  /// node near the tool behind the tool face it is in front of (see computeHolds). Without them the
-  /// links and the pressure of a squashed body pull nodes back into the tool within the step.
-  bool holdInSolver = true;
-  /// Constraint only: friction at the moved nodes; a node that sticks is held to the tool's
-  /// surface motion in the soft solver too (its hold is not frictionless), and the soft bodies
-  /// the tool touches get a contact pass after the links in each of their position iterations
-  /// (btSoftBody::m_cfg.m_psequence), so that the links of a grasped body do not drag the held
-  /// nodes along the jaws. A dynamic tool's soft bodies get the pass too (see ToolAlgorithm.cpp).
+  /// Constraint only: friction at the moved nodes (in Bullet, see also BulletSettings).
   FrictionSettings friction;
 };
 
