@@ -247,6 +247,7 @@ ToolOptions optionsFor(const SceneSpec& scene, const ToolSpec& tool) {
   }
   options.separation.enabled = options.separation.enabled && scene.lastWord;
   options.bullet.holdInSolver = options.bullet.holdInSolver && scene.holds;
+  if (scene.holdPlaneReach.has_value()) options.bullet.holdPlaneReach = Real(*scene.holdPlaneReach);
   options.energyGuard.enabled = options.energyGuard.enabled && scene.energyGuard;
   return options;
 }

@@ -142,6 +142,7 @@ struct SceneSpec {
   std::optional<bool> friction;
   bool lastWord = true;        ///< ThinTool: the last word after the soft solver (ToolOptions::separation); "paper" and "ray-only" never have it
   bool holds = true;           ///< ThinTool: the response's holds in the soft solver (BulletSettings::holdInSolver)
+  std::optional<double> holdPlaneReach;  ///< ThinTool: how far the holds reach along their planes (BulletSettings::holdPlaneReach); unset, the library's default
   bool energyGuard = true;     ///< ThinTool: the energy guard after the soft solver (ToolOptions::energyGuard); "paper" and "ray-only" never have it
 };
 

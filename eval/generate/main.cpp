@@ -13,9 +13,12 @@
 #include <thintool/core/Error.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,6 +37,7 @@ inside the soft body, pierced faces, penetration deeper than 0.1 mm, non-finite 
   --algorithm X      swept (default), paper, ray-only, stock-A, stock-B or stock-E
   --no-last-word     ThinTool without its last word after Bullet's soft solve (ToolOptions::separation)
   --no-holds         ThinTool without its holds in Bullet's soft solve (BulletSettings::holdInSolver)
+  --hold-reach R     the holds reach R skins past the skin along their planes (BulletSettings::holdPlaneReach)
   --no-energy-guard  ThinTool without its energy guard after Bullet's soft solve (ToolOptions::energyGuard)
   --verbose          print each scene's description and every step's ground truth
   --scenes DIR       where vessel.obj is (default: the source tree's eval/scenes)
@@ -50,6 +54,17 @@ void addSeedRange(const std::string& text, std::vector<std::uint64_t>& seeds) {
   const std::uint64_t last = parseSeed(text.substr(dots + 2));
   if (last < first) throw thintool::Error("--seeds '" + text + "': the last seed is before the first");
   for (std::uint64_t s = first; s <= last; ++s) seeds.push_back(s);
+}
+
+// The shortest text that reads back as the same number, for the reproduce line.
+std::string formatNumber(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.17g", value);
+  for (int digits = 1; digits <= 17; ++digits) {
+    std::snprintf(text, sizeof text, "%.*g", digits, value);
+    if (std::strtod(text, nullptr) == value) break;
+  }
+  return text;
 }
 
 AlgorithmKind parseAlgorithm(const std::string& name) {
@@ -90,6 +105,7 @@ int main(int argc, char** argv) {
   bool verbose = false;
   bool lastWord = true;
   bool holds = true;
+  std::optional<double> holdReach;
   bool energyGuard = true;
   std::string sceneFolder = THINTOOL_EVAL_SCENES;
   try {
@@ -112,6 +128,13 @@ int main(int argc, char** argv) {
         lastWord = false;
       } else if (arg == "--no-holds") {
         holds = false;
+      } else if (arg == "--hold-reach") {
+        const std::string text = value();
+        char* end = nullptr;
+        holdReach = std::strtod(text.c_str(), &end);
+        if (end == text.c_str() || *end != '\0' || !(*holdReach >= 0) || !std::isfinite(*holdReach)) {
+          throw thintool::Error("--hold-reach: expected a number >= 0, got '" + text + "'");
+        }
       } else if (arg == "--no-energy-guard") {
         energyGuard = false;
       } else if (arg == "--verbose") {
@@ -145,6 +168,7 @@ int main(int argc, char** argv) {
       scene.algorithm = algorithm;
       scene.lastWord = lastWord;
       scene.holds = holds;
+      scene.holdPlaneReach = holdReach;
       scene.energyGuard = energyGuard;
       if (verbose) std::printf("%s\n", describeScene(scene).c_str());
       RunOptions options;
@@ -169,10 +193,11 @@ int main(int argc, char** argv) {
     nonFinite += verdict.nonFinite;
     energy += verdict.energy;
     refused += verdict.refused;
-    std::printf("seed %llu failed: %s; reproduce: %s --seed %llu --algorithm %s%s%s%s --verbose\n",
+    const std::string reach = holdReach.has_value() ? " --hold-reach " + formatNumber(*holdReach) : "";
+    std::printf("seed %llu failed: %s; reproduce: %s --seed %llu --algorithm %s%s%s%s%s --verbose\n",
                 static_cast<unsigned long long>(seed), joinReasons(verdict).c_str(), argv[0],
                 static_cast<unsigned long long>(seed), algorithmKey(algorithm), lastWord ? "" : " --no-last-word",
-                holds ? "" : " --no-holds", energyGuard ? "" : " --no-energy-guard");
+                holds ? "" : " --no-holds", reach.c_str(), energyGuard ? "" : " --no-energy-guard");
     std::fflush(stdout);
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();

@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 #include <cmath>
 
 namespace thintool {
@@ -127,6 +128,7 @@ void SoftBodySolver::solveSoftBodies() {
 bool SoftBodySolver::collectHolds(btSoftBody& body) {
   m_held.clear();
   m_sharedHolds.clear();
+  m_reachingHolds.clear();
   const int nodeCount = body.m_nodes.size();
   if (m_heldOfNode.size() < static_cast<std::size_t>(nodeCount)) m_heldOfNode.resize(nodeCount, -1);
   const btSoftBody::Node* const firstNode = nodeCount > 0 ? &body.m_nodes[0] : nullptr;
@@ -137,10 +139,18 @@ bool SoftBodySolver::collectHolds(btSoftBody& body) {
           state.firstHold + state.holdCount > body.m_rcontacts.size()) {
         continue;
       }
+      const std::optional<Real>& planeReach = tool->m_options.bullet.holdPlaneReach;
+      const Pose piecePose = toPose(tool->body().getWorldTransform()) * tool->pieceTransform(state.piece);
+      const Real skin = std::max(state.skinInEffect, Real(0));
       for (int k = 0; k < state.holdCount; ++k) {
         const btSoftBody::RContact& contact = body.m_rcontacts[state.firstHold + k];
         // Contacts of an earlier step, since replaced: not this pair's holds.
         if (contact.m_cti.m_colObj != state.holdBodies[static_cast<std::size_t>(k)].get()) break;
+        // A hold with friction keeps a grasped node with the jaw wherever it is: never limited.
+        if (planeReach.has_value() && contact.m_c3 > 0) {
+          m_reachingHolds.push_back({state.firstHold + k, &tool->piece(state.piece), piecePose,
+                                     skin * (1 + *planeReach), contact.m_cti.m_normal});
+        }
         const int node = static_cast<int>(contact.m_node - firstNode);
         int& entry = m_heldOfNode[static_cast<std::size_t>(node)];
         if (entry < 0) {
@@ -202,6 +212,16 @@ void SoftBodySolver::replaySharedHolds(btSoftBody& body, double inverseStepSquar
   }
 }
 
+void SoftBodySolver::limitHoldReach(btSoftBody& body) {
+  for (const ReachingHold& hold : m_reachingHolds) {
+    btSoftBody::RContact& contact = body.m_rcontacts[hold.contact];
+    const btVector3& x = contact.m_node->m_x;
+    const btVector3 onPlane = x - hold.normal * (hold.normal.dot(x) + contact.m_cti.m_offset);
+    const bool backed = outsideDistance(hold.piece->planes, hold.piecePose.applyInverse(toVec3(onPlane))) < hold.reach;
+    contact.m_cti.m_normal = backed ? hold.normal : btVector3(0, 0, 0);
+  }
+}
+
 void SoftBodySolver::solveMeasuringHolds(btSoftBody& body) {
   // Bullet 3.24's btSoftBody::solveConstraints (btSoftBody.cpp), stage for stage and in its
   // arithmetic, so that a body solved here moves exactly as Bullet would move it.
@@ -242,6 +262,7 @@ void SoftBodySolver::solveMeasuringHolds(btSoftBody& body) {
         const bool contacts = config.m_psequence[stage] == btSoftBody::ePSolver::RContacts;
         if (contacts) {
           for (HeldNode& held : m_held) held.before = body.m_nodes[held.node].m_x;
+          limitHoldReach(body);
         }
         btSoftBody::getSolver(config.m_psequence[stage])(&body, 1, fraction);
         if (!contacts) continue;
@@ -278,6 +299,7 @@ void SoftBodySolver::solveMeasuringHolds(btSoftBody& body) {
   }
   body.dampClusters();
   body.applyClusters(true);
+  for (const ReachingHold& hold : m_reachingHolds) body.m_rcontacts[hold.contact].m_cti.m_normal = hold.normal;
 }
 
 void SoftBodySolver::solveConstraints(btScalar timeStep) {

@@ -45,6 +45,8 @@ std::string validateToolOptions(const ToolOptions& options) {
                options.response.friction.kineticCoefficient <= options.response.friction.staticCoefficient)) {
     problem << "response.friction.kineticCoefficient must be finite, >= 0 and <= staticCoefficient, got "
             << options.response.friction.kineticCoefficient;
+  } else if (options.bullet.holdPlaneReach.has_value() && !isLength(*options.bullet.holdPlaneReach)) {
+    problem << "bullet.holdPlaneReach must be finite and >= 0, got " << *options.bullet.holdPlaneReach;
   } else if (options.energyGuard.enabled &&
              !(std::isfinite(options.energyGuard.speedFactor) && options.energyGuard.speedFactor >= 1)) {
     problem << "energyGuard.speedFactor must be finite and >= 1, got " << options.energyGuard.speedFactor;

@@ -175,6 +175,12 @@ TEST(Configuration, InvalidOptionsNameTheToolAndTheField) {
   EXPECT_NO_THROW(addTool(w.world, w.body, options));
   EXPECT_TRUE(removeTool(w.world, w.body));
 
+  for (const Real reach : {Real(-1), Real(std::nan("")), Real(INFINITY)}) {
+    options = ToolOptions{};
+    options.bullet.holdPlaneReach = reach;
+    message = errorOf([&] { addTool(w.world, w.body, options); });
+    EXPECT_NE(message.find("bullet.holdPlaneReach"), std::string::npos) << message;
+  }
   for (const Real factor : {Real(0.5), Real(std::nan("")), Real(INFINITY)}) {
     options = ToolOptions{};
     options.energyGuard.speedFactor = factor;

@@ -108,6 +108,22 @@ TEST(GeneratedScenes, TheEnergyGuardHoldsScenesThatExplodeWithoutIt) {
   }
 }
 
+// Holds that reach along their whole planes keep a squeezed pressure body from bulging past the
+// tool, until Bullet's pressure (kPR·area/volume) throws it apart; reaching four skins past the skin
+// they let it: a plate crushing a pressure ball onto the ground (748), a blade turning 68° a step
+// in a pressure vessel (1025).
+TEST(GeneratedScenes, AHoldPlaneReachLetsASqueezedPressureBodyBulgePastTheTool) {
+  for (const std::uint64_t seed : {748u, 1025u}) {
+    SceneSpec scene = generateScene(seed, kScenes);
+    const Verdict wholePlanes = runAndJudge(scene);
+    EXPECT_TRUE(wholePlanes.energy) << "seed " << seed << " with whole planes: " << joinReasons(wholePlanes);
+    scene.holdPlaneReach = 4;
+    const Verdict reaching = runAndJudge(scene);
+    EXPECT_FALSE(reaching.failed) << "seed " << seed << " reaching 4 skins: " << joinReasons(reaching)
+                                  << "\n  reproduce: " << reproduce(seed) << " --hold-reach 4";
+  }
+}
+
 TEST(GeneratedScenesEverywhere, RunCleanly) {
   for (std::uint64_t seed = 1; seed <= 12; ++seed) {
     const Outcome outcome = runSeed(seed);

@@ -155,6 +155,19 @@ class SoftBodySolver : public btDefaultSoftBodySolver {
   };
   std::vector<HeldNode> m_held;
   std::vector<SharedHold> m_sharedHolds;
+  // A hold whose tool limits how far along its plane it reaches (BulletSettings::holdPlaneReach):
+  // before each contact stage its contact's normal is the plane's, or zero, which Bullet's contact
+  // stage leaves idle, when the node put on the plane lies beyond the piece grown by reach.
+  struct ReachingHold {
+    int contact = 0;
+    const ToolModel* piece = nullptr;
+    Pose piecePose;
+    Real reach = 0;  // m, past the piece's faces
+    btVector3 normal{0, 0, 0};
+  };
+  std::vector<ReachingHold> m_reachingHolds;
+  // Sets each reaching hold's contact normal for the next contact stage (see ReachingHold).
+  void limitHoldReach(btSoftBody& body);
   std::vector<int> m_heldOfNode;  // soft node -> its entry in m_held, -1 for none
   int m_step = 0;
   bool m_dynamicToolsActive = false;  // a tool of this step's last word is dynamic and takes reactions

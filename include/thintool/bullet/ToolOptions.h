@@ -58,6 +58,14 @@ struct BulletSettings {
   /// of their position iterations (btSoftBody::m_cfg.m_psequence), so that the links of a grasped
   /// body do not drag the held nodes along the jaws; a dynamic tool's soft bodies get the pass too.
   bool holdInSolver = true;
+  /// How far along its plane a hold without friction reaches, in multiples of the pair's skin
+  /// beyond the skin (>= 0): it acts on its node only while the node, put on the hold's plane,
+  /// lies within the piece grown by skin·(1 + holdPlaneReach). Past the tool a hold's plane is
+  /// no longer the tool's: a pressure body squeezed under a plate, its nodes held below the plate's
+  /// plane across its whole width, cannot bulge past the rim and loses volume until Bullet's
+  /// pressure (kPR·area/volume) throws it apart. Empty: the whole plane. Runs only in a world whose
+  /// soft-body solver is a thintool::SoftBodySolver.
+  std::optional<Real> holdPlaneReach;
   /// With friction (response.friction.enabled): μs = μk = the soft body's m_cfg.kDF × the tool
   /// body's getFriction(), per pair, as stock Bullet's node contact (btSoftBodyInternals.h,
   /// CollideSDF_RS), which lets a node stick while its tangential motion is within that times its
