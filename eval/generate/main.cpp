@@ -12,6 +12,7 @@
 
 #include <thintool/core/Error.h>
 
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -59,12 +60,8 @@ void addSeedRange(const std::string& text, std::vector<std::uint64_t>& seeds) {
 // The shortest text that reads back as the same number, for the reproduce line.
 std::string formatNumber(double value) {
   char text[32];
-  std::snprintf(text, sizeof text, "%.17g", value);
-  for (int digits = 1; digits <= 17; ++digits) {
-    std::snprintf(text, sizeof text, "%.*g", digits, value);
-    if (std::strtod(text, nullptr) == value) break;
-  }
-  return text;
+  const std::to_chars_result written = std::to_chars(text, text + sizeof text, value);
+  return std::string(text, written.ptr);
 }
 
 AlgorithmKind parseAlgorithm(const std::string& name) {

@@ -17,8 +17,8 @@
 
 #include <algorithm>
 #include <chrono>
-#include <optional>
 #include <cmath>
+#include <optional>
 
 namespace thintool {
 
@@ -140,16 +140,20 @@ bool SoftBodySolver::collectHolds(btSoftBody& body) {
         continue;
       }
       const std::optional<Real>& planeReach = tool->m_options.bullet.holdPlaneReach;
-      const Pose piecePose = toPose(tool->body().getWorldTransform()) * tool->pieceTransform(state.piece);
-      const Real skin = std::max(state.skinInEffect, Real(0));
+      Pose piecePose;
+      Real reach = 0;
+      if (planeReach.has_value()) {
+        piecePose = toPose(tool->body().getWorldTransform()) * tool->pieceTransform(state.piece);
+        reach = std::max(state.skinInEffect, Real(0)) * (1 + *planeReach);
+      }
       for (int k = 0; k < state.holdCount; ++k) {
         const btSoftBody::RContact& contact = body.m_rcontacts[state.firstHold + k];
         // Contacts of an earlier step, since replaced: not this pair's holds.
         if (contact.m_cti.m_colObj != state.holdBodies[static_cast<std::size_t>(k)].get()) break;
         // A hold with friction keeps a grasped node with the jaw wherever it is: never limited.
         if (planeReach.has_value() && contact.m_c3 > 0) {
-          m_reachingHolds.push_back({state.firstHold + k, &tool->piece(state.piece), piecePose,
-                                     skin * (1 + *planeReach), contact.m_cti.m_normal});
+          m_reachingHolds.push_back(
+              {state.firstHold + k, &tool->piece(state.piece), piecePose, reach, contact.m_cti.m_normal});
         }
         const int node = static_cast<int>(contact.m_node - firstNode);
         int& entry = m_heldOfNode[static_cast<std::size_t>(node)];
