@@ -144,6 +144,7 @@ struct SceneSpec {
   bool holds = true;           ///< ThinTool: the response's holds in the soft solver (BulletSettings::holdInSolver)
   std::optional<double> holdPlaneReach;  ///< ThinTool: how far the holds reach along their planes (BulletSettings::holdPlaneReach); unset, the library's default
   bool energyGuard = true;     ///< ThinTool: the energy guard after the soft solver (ToolOptions::energyGuard); "paper" and "ray-only" never have it
+  bool boundForces = true;     ///< ThinTool: with the energy guard, the bound on the forces in the step after a guarded one (EnergyGuardSettings::boundForcesNextStep)
 };
 
 /// An override applied to the file's JSON before it is read: path=value, the path in dots and

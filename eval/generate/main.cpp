@@ -40,6 +40,8 @@ inside the soft body, pierced faces, penetration deeper than 0.1 mm, non-finite 
   --no-holds         ThinTool without its holds in Bullet's soft solve (BulletSettings::holdInSolver)
   --hold-reach R     the holds reach R skins past the skin along their planes (BulletSettings::holdPlaneReach)
   --no-energy-guard  ThinTool without its energy guard after Bullet's soft solve (ToolOptions::energyGuard)
+  --no-force-bound   the energy guard without its bound on the forces of the next step
+                     (EnergyGuardSettings::boundForcesNextStep)
   --verbose          print each scene's description and every step's ground truth
   --scenes DIR       where vessel.obj is (default: the source tree's eval/scenes)
 )";
@@ -104,6 +106,7 @@ int main(int argc, char** argv) {
   bool holds = true;
   std::optional<double> holdReach;
   bool energyGuard = true;
+  bool boundForces = true;
   std::string sceneFolder = THINTOOL_EVAL_SCENES;
   try {
     for (int i = 1; i < argc; ++i) {
@@ -134,6 +137,8 @@ int main(int argc, char** argv) {
         }
       } else if (arg == "--no-energy-guard") {
         energyGuard = false;
+      } else if (arg == "--no-force-bound") {
+        boundForces = false;
       } else if (arg == "--verbose") {
         verbose = true;
       } else if (arg == "--scenes") {
@@ -167,6 +172,7 @@ int main(int argc, char** argv) {
       scene.holds = holds;
       scene.holdPlaneReach = holdReach;
       scene.energyGuard = energyGuard;
+      scene.boundForces = boundForces;
       if (verbose) std::printf("%s\n", describeScene(scene).c_str());
       RunOptions options;
       if (verbose) {
@@ -191,10 +197,11 @@ int main(int argc, char** argv) {
     energy += verdict.energy;
     refused += verdict.refused;
     const std::string reach = holdReach.has_value() ? " --hold-reach " + formatNumber(*holdReach) : "";
-    std::printf("seed %llu failed: %s; reproduce: %s --seed %llu --algorithm %s%s%s%s%s --verbose\n",
+    std::printf("seed %llu failed: %s; reproduce: %s --seed %llu --algorithm %s%s%s%s%s%s --verbose\n",
                 static_cast<unsigned long long>(seed), joinReasons(verdict).c_str(), argv[0],
                 static_cast<unsigned long long>(seed), algorithmKey(algorithm), lastWord ? "" : " --no-last-word",
-                holds ? "" : " --no-holds", reach.c_str(), energyGuard ? "" : " --no-energy-guard");
+                holds ? "" : " --no-holds", reach.c_str(), energyGuard ? "" : " --no-energy-guard",
+                boundForces ? "" : " --no-force-bound");
     std::fflush(stdout);
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();

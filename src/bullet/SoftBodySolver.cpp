@@ -99,6 +99,19 @@ btRigidBody* reactingBody(const Tool& tool) {
   return force.enabled && force.applyToDynamicTool ? nullptr : tool.dynamicBody();
 }
 
+// The speed of the tool's fastest corner over the step (m/s).
+double fastestCorner(const Tool& tool, const Pose& before, const Pose& now, Real inverseStep) {
+  double fastest = 0;
+  for (Index p = 0; p < tool.pieceCount(); ++p) {
+    const Pose start = before * tool.pieceTransform(p);
+    const Pose end = now * tool.pieceTransform(p);
+    for (const Vec3& corner : tool.piece(p).mesh.vertices) {
+      fastest = std::max(fastest, double(length(end.apply(corner) - start.apply(corner)) * inverseStep));
+    }
+  }
+  return std::isfinite(fastest) ? fastest : 0;
+}
+
 // The free node a correction of the pair moved, or nullptr (pinned, or no longer in the body).
 const btSoftBody::Node* movedNode(const btSoftBody& softBody, const detail::PairState& pair,
                                   const NodeCorrection& correction) {
@@ -386,9 +399,13 @@ void SoftBodySolver::measureEnergy(btScalar timeStep) {
       // from before·now⁻¹·x.
       const Pose now = toPose(tool->body().getWorldTransform());
       const Pose before = stepStart(*tool, now);
+      bool guarding = false;
       for (const auto& pair : tool->m_pairs) {
         if (pair->softBody != &softBody || !pair->live || pair->response.corrections.empty()) continue;
+        if (!guarding) energy.toolFastest = std::max(energy.toolFastest, fastestCorner(*tool, before, now, inverseStep));
+        guarding = true;
         guarded = true;
+        energy.boundForcesNextStep = energy.boundForcesNextStep || settings.boundForcesNextStep;
         energy.speedFactor = std::max(energy.speedFactor, double(settings.speedFactor));
         energy.energySlack = std::max(energy.energySlack, double(settings.energySlack));
         energy.restingSpeed = std::max(energy.restingSpeed, double(settings.restingSpeed));
@@ -436,6 +453,38 @@ void SoftBodySolver::measureEnergy(btScalar timeStep) {
   }
 }
 
+void SoftBodySolver::predictMotion(btScalar timeStep) {
+  for (int s = 0; s < m_softBodySet.size(); ++s) {
+    btSoftBody& softBody = *m_softBodySet[s];
+    if (!softBody.isActive()) continue;
+    SoftBodyCache* cache = findCache(softBody);
+    if (cache == nullptr || cache->boundStep != m_step || softBody.m_worldInfo == nullptr) {
+      softBody.predictMotion(timeStep);
+      continue;
+    }
+    // Bullet's own bound on a node's change of velocity from its forces in one step
+    // (btSoftBodyWorldInfo::m_maxDisplacement over the step, per axis), lowered for this body's
+    // prediction only: the world info is shared with every other soft body.
+    btScalar& maxDisplacement = softBody.m_worldInfo->m_maxDisplacement;
+    const btScalar userMaxDisplacement = maxDisplacement;
+    const btScalar dt = timeStep * softBody.m_cfg.timescale;
+    const btScalar limited = btScalar(cache->nextForceBound) * dt;
+    maxDisplacement = btMin(userMaxDisplacement, limited);
+    softBody.predictMotion(timeStep);
+    maxDisplacement = userMaxDisplacement;
+    if (!(limited < userMaxDisplacement)) continue;
+    // The forces that needed the bound may act again in the next step (the pressure of a body
+    // squeezed flat): it stays while a node is predicted as fast as it allows.
+    const btScalar fastestSquared = btScalar(cache->nextForceBound * cache->nextForceBound);
+    for (int i = 0; i < softBody.m_nodes.size(); ++i) {
+      if (softBody.m_nodes[i].m_v.length2() >= fastestSquared) {
+        cache->boundStep = m_step + 1;
+        break;
+      }
+    }
+  }
+}
+
 void SoftBodySolver::guardEnergy() {
   for (int s = 0; s < m_softBodySet.size(); ++s) {
     const BodyEnergy& energy = m_energy[static_cast<std::size_t>(s)];
@@ -444,8 +493,12 @@ void SoftBodySolver::guardEnergy() {
     // The energy about the centre of mass, as the solve left it: the body's motion as a whole is
     // the tool's push or its fall, which the bound must not damp.
     btScalar fastestSquared = 0;
-    const BodyMotion motion = motionOf(softBody, [&fastestSquared](const btSoftBody::Node& node) {
+    btVector3 low(BT_LARGE_FLOAT, BT_LARGE_FLOAT, BT_LARGE_FLOAT);
+    btVector3 high = -low;
+    const BodyMotion motion = motionOf(softBody, [&](const btSoftBody::Node& node) {
       fastestSquared = std::max(fastestSquared, node.m_v.length2());
+      low.setMin(node.m_x);
+      high.setMax(node.m_x);
       return node.m_v;
     });
     const double fastest = double(btSqrt(fastestSquared));
@@ -460,8 +513,19 @@ void SoftBodySolver::guardEnergy() {
     // No node faster than the bound: the tool gives a node its own speed at most, a stiff link a
     // few times that within a step. Then the energy's scale, about the mean.
     const double fastestAllowed = energy.speedFactor * std::max(1.0, energy.fastest);
+    SoftBodyCache* cache = nullptr;
+    const auto boundNextStep = [&](double fastestLeft) {
+      if (!energy.boundForcesNextStep) return;
+      if (cache == nullptr) cache = &cacheOf(softBody);
+      cache->boundStep = m_step;
+      const double acrossBody = double((high - low).length() * softBody.m_sst.isdt);
+      cache->nextForceBound =
+          std::max(energy.speedFactor * std::max({energy.restingSpeed, energy.toolFastest, fastestLeft}), acrossBody);
+    };
+    boundNextStep(fastest);
     if (!(scale < 1) && !(fastest > fastestAllowed)) continue;  // within both bounds: no second pass
     Index slowed = 0;
+    btScalar leftSquared = 0;
     for (int i = 0; i < softBody.m_nodes.size(); ++i) {
       btSoftBody::Node& node = softBody.m_nodes[i];
       if (!(node.m_im > 0)) continue;
@@ -471,7 +535,9 @@ void SoftBodySolver::guardEnergy() {
         ++slowed;
       }
       if (scale < 1) node.m_v = mean + (node.m_v - mean) * scale;
+      leftSquared = std::max(leftSquared, node.m_v.length2());
     }
+    boundNextStep(double(btSqrt(leftSquared)));
     if (slowed == 0 && removed == 0) continue;
     for (Tool* tool : m_configuration.tools()) {
       for (const auto& pair : tool->m_pairs) {
@@ -508,6 +574,13 @@ bool SoftBodySolver::separate(Tool& tool, bool lastResort) {
   tool.m_lastWord.microseconds +=
       std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
   return moved;
+}
+
+SoftBodySolver::SoftBodyCache* SoftBodySolver::findCache(const btSoftBody& softBody) {
+  for (SoftBodyCache& cache : m_caches) {
+    if (cache.softBody == &softBody) return &cache;
+  }
+  return nullptr;
 }
 
 SoftBodySolver::SoftBodyCache& SoftBodySolver::cacheOf(const btSoftBody& softBody) {

@@ -2,8 +2,9 @@
 // Copyright (c) 2026 The ThinTool developers
 //
 // The stability suite: every stiff and extreme case of scenes/StressCases.h held to its
-// expectation, the paper's force response shown unstable where the default is not, and broken
-// soft meshes skipped and counted without harm to the world.
+// expectation, the paper's force response shown unstable where the default is not, broken soft
+// meshes skipped and counted without harm to the world, and a body's force kick bounded in the
+// step after a guarded one.
 
 #include "SoftWorld.h"
 #include "StressCases.h"
@@ -16,6 +17,7 @@
 
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 namespace thintool::scenes {
@@ -138,6 +140,82 @@ TEST(Stability, BrokenSoftFacesAreSkippedAndCounted) {
   removeTool(world, plate);
   world.removeRigidBody(&plate);
   world.removeSoftBody(&sheet);
+}
+
+// A pinned sheet that a kinematic plate presses, so that the energy guard runs on it; after 20
+// steps one free node far from the plate gets a force worth 1000 m/s in a step (the kind of kick
+// Bullet's pressure gives a body squeezed flat). Returns how far that node moves in the step, and
+// leaves in userBound what the world's btSoftBodyWorldInfo::m_maxDisplacement is after it.
+double kickedNodeMove(const EnergyGuardSettings& guard, btScalar& userBound) {
+  SoftWorld soft(btVector3(0, 0, 0));
+  btSoftRigidDynamicsWorld& world = soft.world;
+  world.getWorldInfo().m_maxDisplacement = 500;
+
+  constexpr int kSide = 9;
+  std::vector<btVector3> positions;
+  std::vector<btScalar> masses;
+  for (int i = 0; i < kSide; ++i) {
+    for (int j = 0; j < kSide; ++j) {
+      positions.emplace_back(btScalar(-0.4 + 0.1 * i), 1, btScalar(-0.4 + 0.1 * j));
+      masses.push_back(1);
+    }
+  }
+  btSoftBody sheet(&world.getWorldInfo(), static_cast<int>(positions.size()), positions.data(), masses.data());
+  auto node = [](int i, int j) { return i * kSide + j; };
+  for (int i = 0; i + 1 < kSide; ++i) {
+    for (int j = 0; j + 1 < kSide; ++j) {
+      sheet.appendFace(node(i, j), node(i + 1, j), node(i + 1, j + 1));
+      sheet.appendFace(node(i, j), node(i + 1, j + 1), node(i, j + 1));
+      sheet.appendLink(node(i, j), node(i + 1, j));
+      sheet.appendLink(node(i, j), node(i, j + 1));
+    }
+  }
+  for (int corner : {node(0, 0), node(0, kSide - 1), node(kSide - 1, 0), node(kSide - 1, kSide - 1)}) {
+    sheet.setMass(corner, 0);
+  }
+  sheet.getCollisionShape()->setMargin(btScalar(0.01));
+  world.addSoftBody(&sheet);
+
+  btBoxShape plateShape(btVector3(0.15, 0.01, 0.15));
+  btDefaultMotionState motion(btTransform(btQuaternion::getIdentity(), btVector3(0, 1.05, 0)));
+  btRigidBody plate(btRigidBody::btRigidBodyConstructionInfo(0, &motion, &plateShape));
+  plate.setCollisionFlags(plate.getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
+  world.addRigidBody(&plate);
+  ToolOptions options;
+  options.energyGuard = guard;
+  addTool(world, plate, options);
+
+  const btScalar dt = btScalar(1) / 60;
+  const int kicked = node(1, 1);
+  btVector3 before(0, 0, 0);
+  for (int step = 1; step <= 21; ++step) {
+    motion.setWorldTransform(btTransform(btQuaternion::getIdentity(), btVector3(0, btScalar(1.05 - 0.005 * step), 0)));
+    if (step == 21) {
+      before = sheet.m_nodes[kicked].m_x;
+      sheet.addForce(btVector3(0, 1000 / dt, 0), kicked);  // 1 kg: 1000 m/s in one step
+    }
+    world.stepSimulation(dt, 1, dt);
+  }
+  userBound = world.getWorldInfo().m_maxDisplacement;
+  const double moved = double((sheet.m_nodes[kicked].m_x - before).length());
+  removeTool(world, plate);
+  world.removeRigidBody(&plate);
+  world.removeSoftBody(&sheet);
+  return moved;
+}
+
+TEST(Stability, AForceKickInTheStepAfterAGuardedOneIsBounded) {
+  EnergyGuardSettings guard;
+  btScalar userBound = 0;
+  const double bounded = kickedNodeMove(guard, userBound);
+  EXPECT_EQ(userBound, btScalar(500)) << "the world's own bound is the user's again after the step";
+  guard.boundForcesNextStep = false;
+  const double unbounded = kickedNodeMove(guard, userBound);
+  EXPECT_EQ(userBound, btScalar(500));
+  std::printf("the kicked node moved %.3f m with the bound, %.3f m without\n", bounded, unbounded);
+  // The bound: the sheet's extent (0.8·√2 m) in a step, per axis, before the links pull back.
+  EXPECT_LT(bounded, 0.8 * std::sqrt(2.0)) << "held to the body's extent in a step";
+  EXPECT_GT(unbounded, 5 * bounded) << "without the bound the kick goes through, as in stock Bullet";
 }
 
 }  // namespace

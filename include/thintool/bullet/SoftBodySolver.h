@@ -21,7 +21,8 @@
 /// of its own and the tool's (no bounce). A dynamic tool receives the moved nodes' reaction as impulses, unless its force model already
 /// reacts on it (ForceSettings::applyToDynamicTool). Soft bodies that ignore the tool
 /// (m_collisionDisabledObjects) are left alone. Last, the energy guard (EnergyGuardSettings)
-/// bounds the velocities of each soft body a tool's response moved in the step. Tool::report()
+/// bounds the velocities of each soft body a tool's response moved in the step, and, in Bullet's
+/// prediction of the next step, what that body's forces add to them. Tool::report()
 /// says what the stages did and what they left (ToolDiagnostics::lastWord).
 
 #include <thintool/response/Separation.h>
@@ -45,6 +46,8 @@ class SoftBodySolver : public btDefaultSoftBodySolver {
 
   // See: btDefaultSoftBodySolver::solveConstraints
   void solveConstraints(btScalar timeStep) override;
+  // See: btDefaultSoftBodySolver::predictMotion
+  void predictMotion(btScalar timeStep) override;
 
  private:
   // The energy guard's measures of one soft body in this step (EnergyGuardSettings).
@@ -52,9 +55,11 @@ class SoftBodySolver : public btDefaultSoftBodySolver {
     double predicted = -1;  // kinetic energy about the centre of mass before the solve (J); < 0: not guarded
     double allowance = 0;   // ½·m·u² over the nodes ThinTool moved, u the tool's speed there (J)
     double fastest = 0;     // fastest node as predicted, or tool point at a node ThinTool moved (m/s)
+    double toolFastest = 0;  // the guarding tools' fastest corner over the step (m/s)
     double speedFactor = 1;
     double energySlack = 0;
     double restingSpeed = 0;
+    bool boundForcesNextStep = false;
   };
 
   // Where the tool's motion over this step starts: where the last word left it, or where it is
@@ -96,8 +101,14 @@ class SoftBodySolver : public btDefaultSoftBodySolver {
     bool boundsHold = false;
     // The pinned nodes (zero inverse mass), listed in steps where a dynamic tool takes reactions.
     std::vector<Index> pinned;
+    // The bound on what the body's forces add to a node's velocity in the step after boundStep
+    // (EnergyGuardSettings::boundForcesNextStep), m/s per axis: the larger of speedFactor times
+    // the fastest node, tool corner or restingSpeed, and the body's extent over the step.
+    double nextForceBound = 0;
+    int boundStep = -1;
   };
   SoftBodyCache& cacheOf(const btSoftBody& softBody);
+  SoftBodyCache* findCache(const btSoftBody& softBody);  // nullptr: none yet
   // Once a step: the face reach, and the box of the body's nodes.
   void surveyNodes(SoftBodyCache& cache, const btSoftBody& softBody);
   // The soft body's pinned nodes stop the dynamic tool that carries the piece short of them.

@@ -39,11 +39,24 @@ namespace thintool {
 /// so that a falling or pushed body keeps its motion as a whole); positions are never touched.
 /// It costs two passes over the body's nodes in the steps the response moves a node of it, one
 /// before the solve and one after, and a third when it has to slow nodes.
+///
+/// With boundForcesNextStep, the step after a guarded one bounds what the body's forces add: a
+/// pressure body that a fast tool has squeezed flat gets Bullet's pressure kPR·area/|volume| at a
+/// volume near zero, a kick of thousands of m/s in one step, and a step in which the tool may not
+/// touch it at all. For that body, Bullet's own bound on a node's change of velocity from its forces
+/// in a step (btSoftBodyWorldInfo::m_maxDisplacement over the step, per axis; 1000 m by default) is
+/// lowered, for its predictMotion only, to the larger of: speedFactor times the fastest of its
+/// nodes as the guard left them, the tool's fastest corner over that step, and restingSpeed; and
+/// the body's extent over the step (a squeezed pressure body held in a grasp gets a large kick
+/// every step, which the holds take back in the solve). The bound stays for the next step while a
+/// node is predicted as fast as it allows, and costs one pass over the body's nodes in each step
+/// it applies. Gravity and pose matching are not bounded.
 struct EnergyGuardSettings {
   bool enabled = true;
   Real speedFactor = 2;    ///< >= 1
   Real energySlack = 0.05;  ///< relative, >= 0
   Real restingSpeed = 1;    ///< m/s, >= 0
+  bool boundForcesNextStep = true;
 };
 
 /// What ThinTool does inside Bullet's soft solver and with Bullet's bodies: switches that only the
