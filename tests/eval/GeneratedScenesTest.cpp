@@ -24,6 +24,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
+#include <initializer_list>
 #include <string>
 #include <vector>
 
@@ -92,20 +93,25 @@ TEST(GeneratedScenes, Seeds251To300) { expectNoFailures(block(251, 300)); }
 
 TEST(GeneratedScenes, Regressions) { expectNoFailures(readSeedFile(kGenerated + "/regressions.txt")); }
 
+// Each seed passes as generated and fails the energy check once `without` switches a stage off.
+template <typename SwitchOff>
+void expectStageHoldsSeeds(std::initializer_list<std::uint64_t> seeds, const char* stage, SwitchOff without) {
+  for (const std::uint64_t seed : seeds) {
+    SceneSpec scene = generateScene(seed, kScenes);
+    const Verdict with = runAndJudge(scene);
+    EXPECT_FALSE(with.failed) << "seed " << seed << ": " << joinReasons(with) << "\n  reproduce: " << reproduce(seed);
+    without(scene);
+    const Verdict off = runAndJudge(scene);
+    EXPECT_TRUE(off.energy) << "seed " << seed << " without " << stage << ": " << joinReasons(off);
+  }
+}
+
 // The energy guard (ToolOptions::energyGuard) is what holds these seeds: without it each fails the
 // energy check, with it none fails. A pinned sheet that Bullet's one solver iteration already shakes
 // at 334 m/s without the tool, which a slow kinematic blade pumps to 3,600 m/s (1553); a pressure
 // vessel a slow blade turns in (2230); a pinned sheet a fast dynamic plate drags (1841).
 TEST(GeneratedScenes, TheEnergyGuardHoldsScenesThatExplodeWithoutIt) {
-  for (const std::uint64_t seed : {1553u, 2230u, 1841u}) {
-    SceneSpec scene = generateScene(seed, kScenes);
-    const Verdict guarded = runAndJudge(scene);
-    EXPECT_FALSE(guarded.failed) << "seed " << seed << ": " << joinReasons(guarded) << "\n  reproduce: "
-                                 << reproduce(seed);
-    scene.energyGuard = false;
-    const Verdict unguarded = runAndJudge(scene);
-    EXPECT_TRUE(unguarded.energy) << "seed " << seed << " without the guard: " << joinReasons(unguarded);
-  }
+  expectStageHoldsSeeds({1553u, 2230u, 1841u}, "the guard", [](SceneSpec& scene) { scene.energyGuard = false; });
 }
 
 // The energy guard's bound on the forces of the step after a guarded one
@@ -114,15 +120,7 @@ TEST(GeneratedScenes, TheEnergyGuardHoldsScenesThatExplodeWithoutIt) {
 // zero. A needle turning 159° a step in a pressure vessel (4726), a blade turning 155° a step in a
 // pressure ellipsoid (2780), a dynamic needle at 25.7 m/s turning 111° a step in one (9350).
 TEST(GeneratedScenes, TheForceBoundHoldsSqueezedPressureBodies) {
-  for (const std::uint64_t seed : {4726u, 2780u, 9350u}) {
-    SceneSpec scene = generateScene(seed, kScenes);
-    const Verdict bounded = runAndJudge(scene);
-    EXPECT_FALSE(bounded.failed) << "seed " << seed << ": " << joinReasons(bounded) << "\n  reproduce: "
-                                 << reproduce(seed);
-    scene.boundForces = false;
-    const Verdict unbounded = runAndJudge(scene);
-    EXPECT_TRUE(unbounded.energy) << "seed " << seed << " without the bound: " << joinReasons(unbounded);
-  }
+  expectStageHoldsSeeds({4726u, 2780u, 9350u}, "the bound", [](SceneSpec& scene) { scene.boundForces = false; });
 }
 
 // Holds that reach along their whole planes keep a squeezed pressure body from bulging past the

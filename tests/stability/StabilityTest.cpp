@@ -17,6 +17,7 @@
 
 #include <cctype>
 #include <cmath>
+#include <memory>
 #include <cstdio>
 #include <vector>
 
@@ -72,6 +73,39 @@ TEST(Stability, ANonFiniteToolPoseIsSkippedCountedAndTheTissueStaysHeld) {
   FAIL() << "no NaN-pose case";
 }
 
+// A sheet of 9×9 nodes of 1 kg, 0.1 m apart at height 1, pinned at its corners; links along its
+// rows and columns, two faces a cell.
+constexpr int kSheetSide = 9;
+
+int sheetNode(int i, int j) { return i * kSheetSide + j; }
+
+std::unique_ptr<btSoftBody> pinnedSheet(btSoftBodyWorldInfo& worldInfo) {
+  std::vector<btVector3> positions;
+  std::vector<btScalar> masses;
+  for (int i = 0; i < kSheetSide; ++i) {
+    for (int j = 0; j < kSheetSide; ++j) {
+      positions.emplace_back(btScalar(-0.4 + 0.1 * i), 1, btScalar(-0.4 + 0.1 * j));
+      masses.push_back(1);
+    }
+  }
+  auto sheet = std::make_unique<btSoftBody>(&worldInfo, static_cast<int>(positions.size()), positions.data(),
+                                            masses.data());
+  for (int i = 0; i + 1 < kSheetSide; ++i) {
+    for (int j = 0; j + 1 < kSheetSide; ++j) {
+      sheet->appendFace(sheetNode(i, j), sheetNode(i + 1, j), sheetNode(i + 1, j + 1));
+      sheet->appendFace(sheetNode(i, j), sheetNode(i + 1, j + 1), sheetNode(i, j + 1));
+      sheet->appendLink(sheetNode(i, j), sheetNode(i + 1, j));
+      sheet->appendLink(sheetNode(i, j), sheetNode(i, j + 1));
+    }
+  }
+  const int last = kSheetSide - 1;
+  for (int corner : {sheetNode(0, 0), sheetNode(0, last), sheetNode(last, 0), sheetNode(last, last)}) {
+    sheet->setMass(corner, 0);
+  }
+  sheet->getCollisionShape()->setMargin(btScalar(0.01));
+  return sheet;
+}
+
 // A pinned sheet with broken faces under the plate: one of zero area (its corners in a line),
 // one given twice, one wound the other way. The plate presses the sheet's middle. (A node whose
 // position is NaN cannot be tested here: Bullet's soft body bounds become NaN and its broadphase
@@ -80,33 +114,12 @@ TEST(Stability, BrokenSoftFacesAreSkippedAndCounted) {
   SoftWorld soft(btVector3(0, 0, 0));
   btSoftRigidDynamicsWorld& world = soft.world;
 
-  constexpr int kSide = 9;
-  std::vector<btVector3> positions;
-  std::vector<btScalar> masses;
-  for (int i = 0; i < kSide; ++i) {
-    for (int j = 0; j < kSide; ++j) {
-      positions.emplace_back(btScalar(-0.4 + 0.1 * i), 1, btScalar(-0.4 + 0.1 * j));
-      masses.push_back(1);
-    }
-  }
-  const int nodeCount = kSide * kSide;
-  btSoftBody sheet(&world.getWorldInfo(), static_cast<int>(positions.size()), positions.data(), masses.data());
-  auto node = [](int i, int j) { return i * kSide + j; };
-  for (int i = 0; i + 1 < kSide; ++i) {
-    for (int j = 0; j + 1 < kSide; ++j) {
-      sheet.appendFace(node(i, j), node(i + 1, j), node(i + 1, j + 1));
-      sheet.appendFace(node(i, j), node(i + 1, j + 1), node(i, j + 1));
-      sheet.appendLink(node(i, j), node(i + 1, j));
-      sheet.appendLink(node(i, j), node(i, j + 1));
-    }
-  }
-  sheet.appendFace(node(3, 3), node(4, 4), node(5, 5));  // three nodes in a line
-  sheet.appendFace(node(3, 3), node(4, 3), node(4, 4));
-  sheet.appendFace(node(3, 3), node(3, 4), node(4, 4));
-  for (int corner : {node(0, 0), node(0, kSide - 1), node(kSide - 1, 0), node(kSide - 1, kSide - 1)}) {
-    sheet.setMass(corner, 0);
-  }
-  sheet.getCollisionShape()->setMargin(btScalar(0.01));
+  std::unique_ptr<btSoftBody> made = pinnedSheet(world.getWorldInfo());
+  btSoftBody& sheet = *made;
+  const int nodeCount = sheet.m_nodes.size();
+  sheet.appendFace(sheetNode(3, 3), sheetNode(4, 4), sheetNode(5, 5));  // three nodes in a line
+  sheet.appendFace(sheetNode(3, 3), sheetNode(4, 3), sheetNode(4, 4));
+  sheet.appendFace(sheetNode(3, 3), sheetNode(3, 4), sheetNode(4, 4));
   world.addSoftBody(&sheet);
 
   btBoxShape plateShape(btVector3(0.15, 0.01, 0.15));
@@ -151,29 +164,8 @@ double kickedNodeMove(const EnergyGuardSettings& guard, btScalar& userBound) {
   btSoftRigidDynamicsWorld& world = soft.world;
   world.getWorldInfo().m_maxDisplacement = 500;
 
-  constexpr int kSide = 9;
-  std::vector<btVector3> positions;
-  std::vector<btScalar> masses;
-  for (int i = 0; i < kSide; ++i) {
-    for (int j = 0; j < kSide; ++j) {
-      positions.emplace_back(btScalar(-0.4 + 0.1 * i), 1, btScalar(-0.4 + 0.1 * j));
-      masses.push_back(1);
-    }
-  }
-  btSoftBody sheet(&world.getWorldInfo(), static_cast<int>(positions.size()), positions.data(), masses.data());
-  auto node = [](int i, int j) { return i * kSide + j; };
-  for (int i = 0; i + 1 < kSide; ++i) {
-    for (int j = 0; j + 1 < kSide; ++j) {
-      sheet.appendFace(node(i, j), node(i + 1, j), node(i + 1, j + 1));
-      sheet.appendFace(node(i, j), node(i + 1, j + 1), node(i, j + 1));
-      sheet.appendLink(node(i, j), node(i + 1, j));
-      sheet.appendLink(node(i, j), node(i, j + 1));
-    }
-  }
-  for (int corner : {node(0, 0), node(0, kSide - 1), node(kSide - 1, 0), node(kSide - 1, kSide - 1)}) {
-    sheet.setMass(corner, 0);
-  }
-  sheet.getCollisionShape()->setMargin(btScalar(0.01));
+  std::unique_ptr<btSoftBody> made = pinnedSheet(world.getWorldInfo());
+  btSoftBody& sheet = *made;
   world.addSoftBody(&sheet);
 
   btBoxShape plateShape(btVector3(0.15, 0.01, 0.15));
@@ -186,7 +178,7 @@ double kickedNodeMove(const EnergyGuardSettings& guard, btScalar& userBound) {
   addTool(world, plate, options);
 
   const btScalar dt = btScalar(1) / 60;
-  const int kicked = node(1, 1);
+  const int kicked = sheetNode(1, 1);
   btVector3 before(0, 0, 0);
   for (int step = 1; step <= 21; ++step) {
     motion.setWorldTransform(btTransform(btQuaternion::getIdentity(), btVector3(0, btScalar(1.05 - 0.005 * step), 0)));
