@@ -584,10 +584,7 @@ SoftBodySolver::SoftBodyCache* SoftBodySolver::findCache(const btSoftBody& softB
 }
 
 SoftBodySolver::SoftBodyCache& SoftBodySolver::cacheOf(const btSoftBody& softBody) {
-  SoftBodyCache* found = nullptr;
-  for (SoftBodyCache& cache : m_caches) {
-    if (cache.softBody == &softBody) found = &cache;
-  }
+  SoftBodyCache* found = findCache(softBody);
   if (found == nullptr) {
     m_caches.emplace_back();
     found = &m_caches.back();
