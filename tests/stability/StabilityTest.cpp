@@ -106,6 +106,22 @@ std::unique_ptr<btSoftBody> pinnedSheet(btSoftBodyWorldInfo& worldInfo) {
   return sheet;
 }
 
+// A kinematic plate 0.3 m square and 0.02 m thick, level, centred over the sheet at a height.
+struct KinematicPlate {
+  btBoxShape shape{btVector3(0.15, 0.01, 0.15)};
+  btDefaultMotionState motion;
+  btRigidBody body;
+
+  explicit KinematicPlate(btScalar height)
+      : motion(btTransform(btQuaternion::getIdentity(), btVector3(0, height, 0))),
+        body(btRigidBody::btRigidBodyConstructionInfo(0, &motion, &shape)) {
+    body.setCollisionFlags(body.getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
+  }
+  void moveTo(btScalar height) {
+    motion.setWorldTransform(btTransform(btQuaternion::getIdentity(), btVector3(0, height, 0)));
+  }
+};
+
 // A pinned sheet with broken faces under the plate: one of zero area (its corners in a line),
 // one given twice, one wound the other way. The plate presses the sheet's middle. (A node whose
 // position is NaN cannot be tested here: Bullet's soft body bounds become NaN and its broadphase
@@ -122,17 +138,14 @@ TEST(Stability, BrokenSoftFacesAreSkippedAndCounted) {
   sheet.appendFace(sheetNode(3, 3), sheetNode(3, 4), sheetNode(4, 4));
   world.addSoftBody(&sheet);
 
-  btBoxShape plateShape(btVector3(0.15, 0.01, 0.15));
-  btDefaultMotionState motion(btTransform(btQuaternion::getIdentity(), btVector3(0, 1.1, 0)));
-  btRigidBody plate(btRigidBody::btRigidBodyConstructionInfo(0, &motion, &plateShape));
-  plate.setCollisionFlags(plate.getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
-  world.addRigidBody(&plate);
-  Tool& tool = addTool(world, plate, ToolOptions{});
+  KinematicPlate plate(1.1);
+  world.addRigidBody(&plate.body);
+  Tool& tool = addTool(world, plate.body, ToolOptions{});
 
   long skipped = 0;
   Index contacts = 0;
   for (int step = 1; step <= 30; ++step) {
-    motion.setWorldTransform(btTransform(btQuaternion::getIdentity(), btVector3(0, btScalar(1.1 - 0.01 * step), 0)));
+    plate.moveTo(btScalar(1.1 - 0.01 * step));
     world.stepSimulation(btScalar(1) / 60, 1, btScalar(1) / 60);
     const ToolStepReport& report = tool.report();
     skipped += long(report.diagnostics.detection.skippedFaces);
@@ -150,8 +163,8 @@ TEST(Stability, BrokenSoftFacesAreSkippedAndCounted) {
       EXPECT_LT(x.y(), 0.8 - 0.01) << "node " << i << " stays under the plate";
     }
   }
-  removeTool(world, plate);
-  world.removeRigidBody(&plate);
+  removeTool(world, plate.body);
+  world.removeRigidBody(&plate.body);
   world.removeSoftBody(&sheet);
 }
 
@@ -168,20 +181,17 @@ double kickedNodeMove(const EnergyGuardSettings& guard, btScalar& userBound) {
   btSoftBody& sheet = *made;
   world.addSoftBody(&sheet);
 
-  btBoxShape plateShape(btVector3(0.15, 0.01, 0.15));
-  btDefaultMotionState motion(btTransform(btQuaternion::getIdentity(), btVector3(0, 1.05, 0)));
-  btRigidBody plate(btRigidBody::btRigidBodyConstructionInfo(0, &motion, &plateShape));
-  plate.setCollisionFlags(plate.getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
-  world.addRigidBody(&plate);
+  KinematicPlate plate(1.05);
+  world.addRigidBody(&plate.body);
   ToolOptions options;
   options.energyGuard = guard;
-  addTool(world, plate, options);
+  addTool(world, plate.body, options);
 
   const btScalar dt = btScalar(1) / 60;
   const int kicked = sheetNode(1, 1);
   btVector3 before(0, 0, 0);
   for (int step = 1; step <= 21; ++step) {
-    motion.setWorldTransform(btTransform(btQuaternion::getIdentity(), btVector3(0, btScalar(1.05 - 0.005 * step), 0)));
+    plate.moveTo(btScalar(1.05 - 0.005 * step));
     if (step == 21) {
       before = sheet.m_nodes[kicked].m_x;
       sheet.addForce(btVector3(0, 1000 / dt, 0), kicked);  // 1 kg: 1000 m/s in one step
@@ -190,8 +200,8 @@ double kickedNodeMove(const EnergyGuardSettings& guard, btScalar& userBound) {
   }
   userBound = world.getWorldInfo().m_maxDisplacement;
   const double moved = double((sheet.m_nodes[kicked].m_x - before).length());
-  removeTool(world, plate);
-  world.removeRigidBody(&plate);
+  removeTool(world, plate.body);
+  world.removeRigidBody(&plate.body);
   world.removeSoftBody(&sheet);
   return moved;
 }
