@@ -83,7 +83,6 @@ struct PairState {
   std::vector<NodeHold> holds;
   double detectionMicroseconds = 0;
   double responseMicroseconds = 0;
-  Index rejectedCorrections = 0;
   StockReason stock = StockReason::None;
   bool invalidPose = false;
 
@@ -99,7 +98,6 @@ struct PairState {
     holdCount = 0;
     detectionMicroseconds = 0;
     responseMicroseconds = 0;
-    rejectedCorrections = 0;
     stock = StockReason::None;
     invalidPose = false;
   }

@@ -157,8 +157,8 @@ const ToolStepReport& Tool::report() {
     }
     ++diagnostics.pairs;
     diagnostics.detection.accumulate(state.detection.counters);
-    diagnostics.nodesMoved += static_cast<Index>(state.response.corrections.size()) - state.rejectedCorrections;
-    diagnostics.rejectedCorrections += state.rejectedCorrections;
+    diagnostics.nodesMoved += static_cast<Index>(state.response.corrections.size());
+    diagnostics.rejectedCorrections += state.response.rejected;
     diagnostics.detectionMicroseconds += state.detectionMicroseconds;
     diagnostics.responseMicroseconds += state.responseMicroseconds;
     StockPairs& stock = diagnostics.stockPairs;

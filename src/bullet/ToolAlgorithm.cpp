@@ -96,32 +96,13 @@ void makeContactsLast(btSoftBody& softBody) {
   }
 }
 
-// The longest move a correction of this node can need (m): back along its own motion this step
-// (from where the sweep began it), across the piece and out of its skin, and as far as a point of
-// the piece travelled, which pieceReach covers with the piece and its skin.
-Real justifiedMove(const SoftPatch& patch, Index vertex, Real pieceReach) {
-  Real ownMotion = length(patch.positions[vertex] - patch.previousPositions[vertex]);
-  if (patch.checkedPositions.size() == patch.vertexCount()) {
-    ownMotion = std::max(ownMotion, length(patch.positions[vertex] - patch.checkedPositions[vertex]));
-  }
-  return pieceReach + ownMotion;
-}
-
 // Writes the corrections into the soft body: the moves, the solver's holds, and for a dynamic tool
-// the reaction. A correction that is not finite, or moves its node farther than the step can
-// justify (justifiedMove), is counted and never written. dynamicBody, when not null, is a dynamic
+// the reaction. dynamicBody, when not null, is a dynamic
 // tool that takes the moved nodes' reaction. Returns the longest move written (m).
-Real applyResponse(PairState& state, btSoftBody& softBody, btRigidBody* dynamicBody, btScalar timeStep,
-                   Real pieceReach) {
+Real applyResponse(PairState& state, btSoftBody& softBody, btRigidBody* dynamicBody, btScalar timeStep) {
   Real longestSquared = 0;
   const btScalar inverseStep = 1 / timeStep;
   for (const NodeCorrection& correction : state.response.corrections) {
-    const Real justified = justifiedMove(state.patch, correction.vertex, pieceReach);
-    if (!isFinite(correction.displacement) || !isFinite(correction.normal) ||
-        !(lengthSquared(correction.displacement) <= justified * justified)) {
-      ++state.rejectedCorrections;
-      continue;
-    }
     longestSquared = std::max(longestSquared, lengthSquared(correction.displacement));
     THINTOOL_ASSERT(state.patch.nodeIds[correction.vertex] < static_cast<Index>(softBody.m_nodes.size()));
     btSoftBody::Node& node = softBody.m_nodes[static_cast<int>(state.patch.nodeIds[correction.vertex])];
@@ -445,13 +426,9 @@ void ToolAlgorithm::write(PieceStep& step) {
       makeContactsLast(step.softBody);
     }
   }
-  // Across the piece and its skin, and as far as a point of the piece travels in the step (at most
-  // its translation and, turning, the piece's extent): a longer move is a fault, not a correction.
-  const Real across = length(step.model.bounds.extent());
-  const Real pieceReach = 2 * across + length(step.pose.translation - step.previousPose.translation) + step.fullSkin;
   const bool forceReacts = options.force.enabled && options.force.applyToDynamicTool;
   const Real moved =
-      applyResponse(state, step.softBody, forceReacts ? nullptr : dynamicBody, step.timeStep, pieceReach);
+      applyResponse(state, step.softBody, forceReacts ? nullptr : dynamicBody, step.timeStep);
   if (m_tool.m_pass != nullptr) {
     m_tool.m_pass->recordMoves(moved);
   }

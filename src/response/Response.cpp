@@ -57,23 +57,27 @@ Index planeMovedThrough(const ToolModel& model, const Vec3& start, const Vec3& e
 
 // How far each of a contact's nodes moves along its normal so that the contact point, their
 // barycentric mix, moves depth: in proportion to weight × inverse mass, the smallest mass-weighted
-// move. Beside a pinned node, though, no node moves further than the point itself: a point there
-// (weight 0.01 on the free node) would need its free node moved a hundred times its depth, a kick
-// of metres in a step. Nodes at that bound move depth and the others share what is left; the
-// point may then move less than depth, and the last word answers for the rest. False when no node
-// can move.
+// move. Beside a pinned node, though, a free node moves no further than the point itself, nor past
+// the contact's plane (room: how far each node lies behind it): a point there (weight 0.01 on the
+// free node) would need its free node moved a hundred times its depth, a kick of metres in a step,
+// and the point hardly moves, so that every further contact and sweep would push the node again.
+// Nodes at that bound move their bound and the others share what is left; the point may then move
+// less than depth, and the last word answers for the rest. False when no node can move.
 bool shareContactMove(const Contact& contact, const std::vector<Real>& inverseMasses, Real depth,
-                      std::array<Real, 3>& outShares) {
+                      const std::array<Real, 3>& room, std::array<Real, 3>& outShares) {
   std::array<bool, 3> atBound{};
   bool pinned = false;
   for (Index k = 0; k < contact.softNodeCount; ++k) pinned = pinned || !(inverseMasses[contact.patchVertices[k]] > 0);
-  const Real most = pinned ? depth : std::numeric_limits<Real>::max();
+  std::array<Real, 3> most;
+  for (Index k = 0; k < 3; ++k) {
+    most[k] = pinned ? std::min(depth, std::max(room[k], Real(0))) : std::numeric_limits<Real>::max();
+  }
   for (int round = 0; round < 3; ++round) {
     Real left = depth;
     Real weightedMobility = 0;
     for (Index k = 0; k < contact.softNodeCount; ++k) {
       if (atBound[k]) {
-        left -= contact.barycentric[k] * depth;
+        left -= contact.barycentric[k] * most[k];
       } else {
         weightedMobility += contact.barycentric[k] * contact.barycentric[k] * inverseMasses[contact.patchVertices[k]];
       }
@@ -81,12 +85,12 @@ bool shareContactMove(const Contact& contact, const std::vector<Real>& inverseMa
     bool capped = false;
     for (Index k = 0; k < contact.softNodeCount; ++k) {
       if (atBound[k]) {
-        outShares[k] = depth;
+        outShares[k] = most[k];
         continue;
       }
       const Real mobility = contact.barycentric[k] * inverseMasses[contact.patchVertices[k]];
       outShares[k] = weightedMobility > 0 && left > 0 ? left * mobility / weightedMobility : 0;
-      if (outShares[k] > most) {
+      if (outShares[k] > most[k]) {
         atBound[k] = true;
         capped = true;
       }
@@ -95,7 +99,7 @@ bool shareContactMove(const Contact& contact, const std::vector<Real>& inverseMa
   }
   bool any = false;
   for (Index k = 0; k < contact.softNodeCount; ++k) {
-    outShares[k] = std::min(outShares[k], most);
+    outShares[k] = std::min(outShares[k], most[k]);
     any = any || outShares[k] > 0;
   }
   return any;
@@ -166,7 +170,8 @@ struct ResponseProjection {
   void slideWithFriction(const FrictionSettings& friction) {
     applyFriction(friction, step.pose, step.previousPose, patch, work.m_positions, corrections);
   }
-  void finish(Wrench& outWrench);
+  Real justifiedMove(Index vertex) const;
+  Index finish(Wrench& outWrench);
 };
 
 void ResponseProjection::begin() {
@@ -281,12 +286,14 @@ void ResponseProjection::projectContactPoints() {
     Real worst = 0;
     for (const Contact& contact : contacts) {
       Vec3 point;
+      std::array<Real, 3> room{};
       for (Index k = 0; k < contact.softNodeCount; ++k) {
         point += positionOf(contact.patchVertices[k]) * contact.barycentric[k];
+        room[k] = -distanceOf(contact, positionOf(contact.patchVertices[k]));
       }
       const Real depth = -distanceOf(contact, point);
       std::array<Real, 3> shares{};
-      if (!(depth > 0) || !shareContactMove(contact, patch.inverseMasses, depth, shares)) {
+      if (!(depth > 0) || !shareContactMove(contact, patch.inverseMasses, depth, room, shares)) {
         continue;
       }
       worst = std::max(worst, depth);
@@ -340,17 +347,45 @@ void ResponseProjection::returnCarriedNodes() {
   }
 }
 
-// Displacements, the reaction on the tool, and the slots cleared for the next call.
-void ResponseProjection::finish(Wrench& outWrench) {
+// The longest move a correction of this vertex can need (m): back along its own motion this step
+// (from where the sweep began it), across the piece and out of its skin, and as far as a point of
+// the piece travelled (its translation and, turning, twice its extent).
+Real ResponseProjection::justifiedMove(Index vertex) const {
+  Real ownMotion = length(patch.positions[vertex] - patch.previousPositions[vertex]);
+  if (patch.checkedPositions.size() == patch.vertexCount()) {
+    ownMotion = std::max(ownMotion, length(patch.positions[vertex] - patch.checkedPositions[vertex]));
+  }
+  const Real pieceReach = 2 * length(step.model.bounds.extent()) +
+                          length(step.pose.translation - step.previousPose.translation) + step.skin;
+  return pieceReach + ownMotion;
+}
+
+// Displacements, the reaction on the tool, and the slots cleared for the next call. A correction
+// that is not finite, or moves its node farther than the step can justify, is a fault, not a
+// correction: it is dropped here, so that neither the moves, the holds, the reaction nor the next
+// step's sweep sees it.
+Index ResponseProjection::finish(Wrench& outWrench) {
   const Real inverseDtSquared = 1 / (step.dt * step.dt);
-  for (NodeCorrection& correction : corrections) {
+  Index kept = 0;
+  Index dropped = 0;
+  for (Index i = 0; i < static_cast<Index>(corrections.size()); ++i) {
+    NodeCorrection correction = corrections[i];
     const Index vertex = correction.vertex;
+    work.m_slot[vertex] = kInvalidIndex;
     correction.displacement = work.m_positions[vertex] - patch.positions[vertex];
+    const Real justified = justifiedMove(vertex);
+    if (!isFinite(correction.displacement) || !isFinite(correction.normal) ||
+        !(lengthSquared(correction.displacement) <= justified * justified)) {
+      ++dropped;
+      continue;
+    }
     const Vec3 forceOnTool = correction.displacement * (-inverseDtSquared / patch.inverseMasses[vertex]);
     outWrench.force += forceOnTool;
     outWrench.torque += cross(patch.positions[vertex] - step.pose.translation, forceOnTool);
-    work.m_slot[vertex] = kInvalidIndex;
+    corrections[kept++] = correction;
   }
+  corrections.resize(kept);
+  return dropped;
 }
 
 void computeResponse(const StepContext& step, const SoftPatch& patch, const std::vector<Contact>& contacts,
@@ -358,6 +393,7 @@ void computeResponse(const StepContext& step, const SoftPatch& patch, const std:
   THINTOOL_ASSERT(patch.consistent());
   out.corrections.clear();
   out.wrench = Wrench{};
+  out.rejected = 0;
   if (settings.kind == ResponseKind::None || !(step.dt > 0)) {
     return;
   }
@@ -377,7 +413,7 @@ void computeResponse(const StepContext& step, const SoftPatch& patch, const std:
       projection.slideWithFriction(settings.friction);
     }
   }
-  projection.finish(out.wrench);
+  out.rejected = projection.finish(out.wrench);
 }
 
 void computeHolds(const StepContext& step, const SoftPatch& patch, bool holdAtToolFaces, ResponseResult& response,

@@ -131,6 +131,24 @@ TEST(Response, BesideAPinnedNodeNoNodeMovesFurtherThanItsContactPoint) {
   EXPECT_GT(hit.y, -kSkin);
 }
 
+TEST(Response, BesideAPinnedNodeAFreeNodeStopsOnTheContactPlaneHoweverManyContactsPushIt) {
+  // Three contact points next to two pinned nodes inside the plate: nothing can move them out. The
+  // free node, half a skin under the plate, goes out to the skin's plane and no further: each
+  // contact and each sweep would otherwise push it again by the points' depth.
+  Fixture f;
+  const Index free = f.vertex({-0.1, -0.0005, -0.1});
+  const Index pin = f.vertex({0.1, 0.003, -0.1}, 0);
+  const Index pin2 = f.vertex({0, 0.003, 0.1}, 0);
+  const Index face = f.face(free, pin, pin2);
+  f.contact(face, {0, -1, 0}, {0.01, 0.99, 0}, 0.003);
+  f.contact(face, {0, -1, 0}, {0.01, 0, 0.99}, 0.003);
+  f.contact(face, {0, -1, 0}, {0.02, 0.49, 0.49}, 0.003);
+  f.respond();
+  EXPECT_NEAR(f.finalPosition(free).y, -kSkin, 1e-12);
+  EXPECT_EQ(f.finalPosition(pin).y, 0.003);
+  EXPECT_EQ(f.finalPosition(pin2).y, 0.003);
+}
+
 TEST(Response, NoCorrectionEndsInsideTheTool) {
   // A face under the plate whose contact asks it up to y = 0.01, the plate's mid-plane: met by
   // moving its nodes, that would leave them inside the plate. They leave through the underside,
@@ -348,6 +366,27 @@ TEST(Response, PaperForceIsKTimesDepthSpreadByBarycentricWeights) {
     EXPECT_NEAR(c.displacement.y, -force * 0.25 * f.patch.inverseMasses[c.vertex] * kDt * kDt, 1e-15);
   }
   EXPECT_NEAR(f.wrench.force.y, force * 0.5, 1e-9) << "the pinned node's share goes nowhere";
+}
+
+TEST(Response, ACorrectionLongerThanTheStepCanJustifyIsDroppedWithItsReaction) {
+  // Two nodes just under the plate, each with a faulty contact plane 3 m below it. Across the plate
+  // and its skin is about 1.1 m, and the plate did not move: a 3 m move is justified only for the
+  // node that the last sweep left 3.5 m away, which came that far this step. The other one's
+  // correction is dropped, and with it its share of the reaction and of the next sweep's memory.
+  Fixture f;
+  const Index still = f.vertex({0, -0.0005, 0});
+  const Index travelled = f.vertex({0.05, -0.0005, 0});
+  f.patch.checkedPositions = {f.patch.positions[still], f.patch.positions[travelled] + Vec3{0, 3.5, 0}};
+  f.underside(still).offset = -3;
+  f.underside(travelled).offset = -3;
+  f.respond();
+  ASSERT_EQ(f.corrections.size(), 1u);
+  EXPECT_EQ(f.result.rejected, 1u);
+  EXPECT_EQ(f.corrections[0].vertex, travelled);
+  EXPECT_NEAR(f.finalPosition(travelled).y, -3, 0.01);
+  EXPECT_EQ(f.finalPosition(still).y, -0.0005);
+  const Vec3 kept = f.corrections[0].displacement / (f.patch.inverseMasses[travelled] * kDt * kDt);
+  EXPECT_NEAR(f.wrench.force.y, -kept.y, 1e-6) << "only the kept correction pushes the tool";
 }
 
 TEST(Response, NoneMovesNothing) {

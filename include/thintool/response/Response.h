@@ -19,8 +19,9 @@
 ///     soft face onto its entry plane; the move is shared by the face's nodes in proportion to
 ///     barycentric weight × inverse mass, the smallest mass-weighted move that does it, so a
 ///     needle pressing the middle of a large face moves the face and a node far from the hit point
-///     moves little; but beside a pinned node no node moves further than the point itself, which
-///     then moves only part of the way, rather than fling the free node a hundred times the depth.
+///     moves little; but beside a pinned node no node moves further than the point itself, nor
+///     past the contact's plane, so the point then moves only part of the way, rather than fling
+///     the free node a hundred times the depth, or push it again at every contact and sweep.
 ///     Contacts are swept in order (Gauss–Seidel) until every hit point is out, or four times;
 ///   - carried nodes back: no move may end inside the tool. Moving a face's nodes along the face's
 ///     normal can, near a rim, carry one into the tool from a side no contact speaks for, or across
@@ -118,6 +119,9 @@ class ResponseWorkspace {
 struct ResponseResult {
   std::vector<NodeCorrection> corrections;
   Wrench wrench;  ///< on the tool; torque about the tool's origin
+  /// Corrections dropped as faults: not finite, or longer than the step can justify (the node's
+  /// own motion back, across the piece and its skin, and the piece's travel). Never expected.
+  Index rejected = 0;
   ResponseWorkspace workspace;
 };
 
