@@ -563,10 +563,11 @@ bool SoftBodySolver::separate(Tool& tool, bool lastResort) {
   bool moved = false;
   for (Index p = 0; p < tool.pieceCount(); ++p) {
     const PieceMotion motion(before, now, settings.maxTurnPerSample, tool.pieceTransform(p));
+    const bool alone = !anotherPieceNear(tool, p, motion);
     for (int s = 0; s < m_softBodySet.size(); ++s) {
       btSoftBody& softBody = *m_softBodySet[s];
       if (detail::ignores(softBody, tool.body()) || !detail::lastWordActsOn(detail::stockReason(softBody))) continue;
-      const SeparationCounts piece = separatePiece(tool, tool.piece(p), motion, softBody, lastResort);
+      const SeparationCounts piece = separatePiece(tool, tool.piece(p), motion, softBody, lastResort, alone);
       moved = moved || piece.nodesMoved > 0 || piece.facesMoved > 0;
       counts.accumulate(piece);
     }
@@ -697,8 +698,25 @@ void SoftBodySolver::findBackings(const btSoftBody& softBody) {
   }
 }
 
+// Whether a piece of any tool other than piece p of tool ends the step within a piece's width of
+// where piece p swept: near enough for the two to hold a soft face between them.
+bool SoftBodySolver::anotherPieceNear(const Tool& tool, Index p, const PieceMotion& motion) const {
+  const ToolModel& piece = tool.piece(p);
+  const Aabb reach = sweptBounds(piece.bounds, motion).expanded(length(piece.bounds.extent()));
+  for (const Tool* other : m_configuration.tools()) {
+    const Pose pose = toPose(other->body().getWorldTransform());
+    for (Index q = 0; q < other->pieceCount(); ++q) {
+      if (other == &tool && q == p) continue;
+      if (!isFinite(pose) || reach.overlaps(transformedBounds(other->piece(q).bounds, pose * other->pieceTransform(q)))) {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
 SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piece, const PieceMotion& motion,
-                                               btSoftBody& softBody, bool lastResort) {
+                                               btSoftBody& softBody, bool lastResort, bool alone) {
   const Real clearance = tool.m_options.separation.clearance;
   const Aabb swept = sweptBounds(piece.bounds, motion).expanded(clearance);
   const int nodeCount = softBody.m_nodes.size();
@@ -779,7 +797,7 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
   for (int extension = 0;; ++extension) {
     const SeparationSettings& settings = tool.m_options.separation;
     const SeparationCounts run = lastResort ? carryMeetingFaces(piece, motion, settings, m_patch)
-                                            : separateFromPiece(piece, motion, settings, m_patch);
+                                            : separateFromPiece(piece, motion, settings, m_patch, alone);
     counts.nodesMoved += run.nodesMoved;
     counts.facesMoved += run.facesMoved;
     counts.nodesInside = run.nodesInside;

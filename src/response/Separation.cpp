@@ -326,47 +326,74 @@ bool keptItsSideAlongArc(const ToolModel& piece, const PieceMotion& motion, cons
 // A face with a pinned node cannot translate: shares of a translation move only its free nodes,
 // the part of it by the pinned node stays where it was, and round after round the same move leaves
 // it pierced (generated seed 1969: a sheet's corner face across a plate's rim). Its free nodes go
-// instead just beyond one of the piece's face planes that every pinned node of the face is beyond
-// already, the plane that asks the least total move of them, each along that plane's normal, on a
-// path that stays out of the piece and leaves the node outside every plane it is outside of (round
-// an edge of the piece is where the node's other faces would pierce it: seed 1969's next round).
+// instead just beyond a plane that every pinned node of the face is beyond already and the whole
+// piece is behind, the plane that asks the least total move of them, each along that plane's
+// normal, on a path that stays out of the piece and leaves the node outside every plane it is
+// outside of (round an edge of the piece is where the node's other faces would pierce it: seed
+// 1969's next round). The planes are the piece's face planes and, through each of its edges,
+// planes turned between the edge's two faces: a face wrapped round a rim, its pinned node under
+// the piece and a free node above it, comes clear only by a plane through the rim (seed 4127).
+// Those come only with aboutEdges, in the last round, when no face plane serves, and only for a
+// piece with no other near it: turned about an edge, a face between two jaws swings out of one into
+// the other, pass after pass (seeds 3461 and 1032).
 // The whole triangle then lies beyond the plane. False when no plane serves: a pinned node in the
 // piece, or a free node inside it, which the node pass moves first.
 bool swingAboutPinnedNodes(SeparationPatch& patch, const std::array<Index, 3>& face, const ToolModel& piece,
-                           const Pose& end, const Vec3 (&local)[3], Real clearance) {
+                           const Pose& end, const Vec3 (&local)[3], Real clearance, bool aboutEdges) {
   const std::vector<Plane>& planes = piece.planes;
-  Index best = kInvalidIndex;
+  Plane best;
   Real bestCost = std::numeric_limits<Real>::max();
-  for (Index p = 0; p < static_cast<Index>(planes.size()); ++p) {
-    const Plane& plane = planes[p];
+  const auto consider = [&](const Plane& plane) {
     Real cost = 0;
-    bool serves = true;
-    for (int k = 0; k < 3 && serves; ++k) {
+    for (int k = 0; k < 3; ++k) {
       const Real distance = plane.signedDistance(local[k]);
       if (!(patch.inverseMasses[face[k]] > 0)) {
-        serves = distance >= 0;
+        if (!(distance >= 0)) return;
       } else if (distance < clearance) {
         const Vec3 to = local[k] + plane.normal * (clearance - distance);
-        serves = !clipSegmentConvex(planes, 0, local[k], to).hit;
+        if (clipSegmentConvex(planes, 0, local[k], to).hit) return;
         for (const Plane& other : planes) {
-          serves = serves && (other.signedDistance(local[k]) <= 0 || other.signedDistance(to) > 0);
+          if (other.signedDistance(local[k]) > 0 && !(other.signedDistance(to) > 0)) return;
         }
         cost += clearance - distance;
       }
     }
-    if (serves && cost < bestCost) {
+    if (cost < bestCost) {
       bestCost = cost;
-      best = p;
+      best = plane;
+    }
+  };
+  for (const Plane& plane : planes) consider(plane);
+  // Turned about an edge from one of its faces to the other, in steps of a sixteenth of the way.
+  constexpr int kTurns = 16;
+  const Real onPlane = Real(1e-9) * (Real(1) + length(piece.bounds.extent()));
+  const bool useEdges = aboutEdges && bestCost == std::numeric_limits<Real>::max();
+  for (std::size_t e = 0; useEdges && e < piece.featureEdges.size(); ++e) {
+    const std::array<Index, 2>& edge = piece.featureEdges[e];
+    const Vec3& a = piece.mesh.vertices[edge[0]];
+    const Vec3& b = piece.mesh.vertices[edge[1]];
+    Vec3 sides[2];
+    int found = 0;
+    for (const Plane& plane : planes) {
+      if (found == 2 || std::abs(plane.signedDistance(a)) > onPlane || std::abs(plane.signedDistance(b)) > onPlane) continue;
+      if (found == 1 && dot(sides[0], plane.normal) > 1 - Real(1e-9)) continue;
+      sides[found++] = plane.normal;
+    }
+    if (found < 2) continue;
+    for (int turn = 1; turn < kTurns; ++turn) {
+      const Real t = Real(turn) / Real(kTurns);
+      const Vec3 normal = normalizedOrZero(sides[0] * (1 - t) + sides[1] * t);
+      if (normal == Vec3{}) continue;
+      consider(Plane{normal, dot(normal, a)});
     }
   }
-  if (best == kInvalidIndex) return false;
-  const Plane& plane = planes[best];
+  if (bestCost == std::numeric_limits<Real>::max()) return false;
   for (int k = 0; k < 3; ++k) {
     const Index v = face[k];
-    const Real distance = plane.signedDistance(local[k]);
+    const Real distance = best.signedDistance(local[k]);
     if (!(patch.inverseMasses[v] > 0) || distance >= clearance) continue;
-    patch.positions[v] = end.apply(local[k] + plane.normal * (clearance - distance));
-    patch.directions[v] = end.applyToDirection(plane.normal);
+    patch.positions[v] = end.apply(local[k] + best.normal * (clearance - distance));
+    patch.directions[v] = end.applyToDirection(best.normal);
     patch.moved[v] = 1;
   }
   return true;
@@ -697,7 +724,7 @@ bool triangleMeetsPiece(const ToolModel& piece, const Vec3& a, const Vec3& b, co
 }
 
 SeparationCounts separateFromPiece(const ToolModel& piece, const PieceMotion& motion,
-                                   const SeparationSettings& settings, SeparationPatch& patch) {
+                                   const SeparationSettings& settings, SeparationPatch& patch, bool alone) {
   SeparationCounts counts;
   const Index vertexCount = patch.vertexCount();
   THINTOOL_ASSERT(patch.consistent());
@@ -752,7 +779,8 @@ SeparationCounts separateFromPiece(const ToolModel& piece, const PieceMotion& mo
       // A face whose pinned node passed the piece went round it, not through: it has no side it
       // could go back to, and it is left alone unless it meets the piece at the end.
       if (pinned && !axes.meets()) continue;
-      if (!(pinned && swingAboutPinnedNodes(patch, face, piece, end, now, clearance)) &&
+      const bool aboutEdges = alone && round + 1 == std::max(1, settings.maxRounds);
+      if (!(pinned && swingAboutPinnedNodes(patch, face, piece, end, now, clearance, aboutEdges)) &&
           !moveFace(patch, face, end.applyToDirection(move), motion)) {
         continue;
       }

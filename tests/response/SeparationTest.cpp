@@ -222,6 +222,30 @@ TEST(Separation, AFaceHangingFromAPinnedNodeAcrossTheRimSwingsBeyondTheRim) {
   EXPECT_GE(x[under].z, 0.2);
 }
 
+TEST(Separation, AFaceWrappedRoundTheRimFromAPinnedNodeUnderThePlateSwingsAboutTheRim) {
+  // Pinned under the plate inside its outline, one free node above the plate just inside the +z
+  // rim, one beyond the rim: the edge up from the pinned node passes through the plate. No face
+  // plane has the pinned node beyond it and a straight way out for the node above; a plane through
+  // the rim, turned between the underside and the +z side, has both.
+  const ToolModel piece = plate();
+  Patch p;
+  const Vec3 corners[3] = {{0.1, -0.15, 0.18}, {0.05, 0.05, 0.199}, {0, 0, 0.22}};
+  const Index pinned = p.node(corners[0], corners[0], 0);
+  const Index above = p.node(corners[1], corners[1]);
+  const Index beyond = p.node(corners[2], corners[2]);
+  p.patch.faces.push_back({pinned, above, beyond});
+  ASSERT_TRUE(triangleMeetsPiece(piece, corners[0], corners[1], corners[2], 0));
+  const SeparationCounts counts = separateFromPiece(piece, PieceMotion(Pose{}, Pose{}, 0.1), {}, p.patch);
+  const std::vector<Vec3>& x = p.patch.positions;
+  EXPECT_EQ(counts.facesPierced, 0u);
+  EXPECT_FALSE(triangleMeetsPiece(piece, x[pinned], x[above], x[beyond], 0));
+  EXPECT_EQ(x[pinned], corners[0]);
+  // Round the rim, not through the plate.
+  EXPECT_GT(x[above].y, 0.01);
+  EXPECT_GT(x[above].z, 0.2);
+  EXPECT_LT(length(x[above] - corners[1]), 0.05) << "a swing about the rim, not a fling";
+}
+
 TEST(Separation, FacesThatWantASharedNodeOnOppositeSidesMoveTogether) {
   // Two faces in the needle's plane, one either side of it, sharing the node in the needle: each
   // clears by going its own way, taking the node along, and one round leaves one of them pierced.

@@ -75,7 +75,8 @@ class SoftBodySolver : public btDefaultSoftBodySolver {
   // lastResort, each piece only carries the faces that still meet it (carryMeetingFaces).
   bool separate(Tool& tool, bool lastResort);
   SeparationCounts separatePiece(Tool& tool, const ToolModel& piece, const PieceMotion& motion, btSoftBody& softBody,
-                                 bool lastResort);
+                                 bool lastResort, bool alone);
+  bool anotherPieceNear(const Tool& tool, Index p, const PieceMotion& motion) const;
 
   // What the gather keeps per soft body. The faces of each node (CSR), rebuilt when the body's
   // node or face count changes. And a bound on how far a face's box (its nodes at the start and

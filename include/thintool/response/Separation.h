@@ -172,9 +172,10 @@ class PieceMotion {
 };
 
 /// Puts the patch's nodes and faces back on their side of the piece (see the file comment).
-/// Writes positions and moved; returns what it did and what is left.
+/// Writes positions and moved; returns what it did and what is left. alone: no other piece (the
+/// other jaw, another tool) is near this one, so that a face may swing about an edge of it.
 SeparationCounts separateFromPiece(const ToolModel& piece, const PieceMotion& motion,
-                                   const SeparationSettings& settings, SeparationPatch& patch);
+                                   const SeparationSettings& settings, SeparationPatch& patch, bool alone = true);
 
 /// The last resort alone, for a tool whose pieces keep undoing each other's moves (two jaws with a
 /// face between them): the movable nodes of the faces that meet the piece at the end of the step
