@@ -97,8 +97,8 @@ void makeContactsLast(btSoftBody& softBody) {
 }
 
 // Writes the corrections into the soft body: the moves, the solver's holds, and for a dynamic tool
-// the reaction. dynamicBody, when not null, is a dynamic
-// tool that takes the moved nodes' reaction. Returns the longest move written (m).
+// the reaction. dynamicBody, when not null, is a dynamic tool that takes the moved nodes' reaction.
+// Returns the longest move written (m).
 Real applyResponse(PairState& state, btSoftBody& softBody, btRigidBody* dynamicBody, btScalar timeStep) {
   Real longestSquared = 0;
   const btScalar inverseStep = 1 / timeStep;

@@ -170,7 +170,7 @@ struct ResponseProjection {
   void slideWithFriction(const FrictionSettings& friction) {
     applyFriction(friction, step.pose, step.previousPose, patch, work.m_positions, corrections);
   }
-  Real justifiedMove(Index vertex) const;
+  Real justifiedMove(Index vertex, Real pieceReach) const;
   Index finish(Wrench& outWrench);
 };
 
@@ -348,15 +348,13 @@ void ResponseProjection::returnCarriedNodes() {
 }
 
 // The longest move a correction of this vertex can need (m): back along its own motion this step
-// (from where the sweep began it), across the piece and out of its skin, and as far as a point of
-// the piece travelled (its translation and, turning, twice its extent).
-Real ResponseProjection::justifiedMove(Index vertex) const {
+// (from where the sweep began it), and pieceReach: across the piece and out of its skin, and as far
+// as a point of the piece travelled (its translation and, turning, twice its extent).
+Real ResponseProjection::justifiedMove(Index vertex, Real pieceReach) const {
   Real ownMotion = length(patch.positions[vertex] - patch.previousPositions[vertex]);
   if (patch.checkedPositions.size() == patch.vertexCount()) {
     ownMotion = std::max(ownMotion, length(patch.positions[vertex] - patch.checkedPositions[vertex]));
   }
-  const Real pieceReach = 2 * length(step.model.bounds.extent()) +
-                          length(step.pose.translation - step.previousPose.translation) + step.skin;
   return pieceReach + ownMotion;
 }
 
@@ -366,6 +364,8 @@ Real ResponseProjection::justifiedMove(Index vertex) const {
 // step's sweep sees it.
 Index ResponseProjection::finish(Wrench& outWrench) {
   const Real inverseDtSquared = 1 / (step.dt * step.dt);
+  const Real pieceReach = 2 * length(step.model.bounds.extent()) +
+                          length(step.pose.translation - step.previousPose.translation) + step.skin;
   Index kept = 0;
   Index dropped = 0;
   for (Index i = 0; i < static_cast<Index>(corrections.size()); ++i) {
@@ -373,7 +373,7 @@ Index ResponseProjection::finish(Wrench& outWrench) {
     const Index vertex = correction.vertex;
     work.m_slot[vertex] = kInvalidIndex;
     correction.displacement = work.m_positions[vertex] - patch.positions[vertex];
-    const Real justified = justifiedMove(vertex);
+    const Real justified = justifiedMove(vertex, pieceReach);
     if (!isFinite(correction.displacement) || !isFinite(correction.normal) ||
         !(lengthSquared(correction.displacement) <= justified * justified)) {
       ++dropped;

@@ -366,25 +366,15 @@ bool swingAboutPinnedNodes(SeparationPatch& patch, const std::array<Index, 3>& f
   for (const Plane& plane : planes) consider(plane);
   // Turned about an edge from one of its faces to the other, in steps of a sixteenth of the way.
   constexpr int kTurns = 16;
-  const Real onPlane = Real(1e-9) * (Real(1) + length(piece.bounds.extent()));
   const bool useEdges = aboutEdges && bestCost == std::numeric_limits<Real>::max();
   for (std::size_t e = 0; useEdges && e < piece.featureEdges.size(); ++e) {
-    const std::array<Index, 2>& edge = piece.featureEdges[e];
-    const Vec3& a = piece.mesh.vertices[edge[0]];
-    const Vec3& b = piece.mesh.vertices[edge[1]];
-    Vec3 sides[2];
-    int found = 0;
-    for (const Plane& plane : planes) {
-      if (found == 2 || std::abs(plane.signedDistance(a)) > onPlane || std::abs(plane.signedDistance(b)) > onPlane) continue;
-      if (found == 1 && dot(sides[0], plane.normal) > 1 - Real(1e-9)) continue;
-      sides[found++] = plane.normal;
-    }
-    if (found < 2) continue;
+    const Vec3& onEdge = piece.mesh.vertices[piece.featureEdges[e][0]];
+    const std::array<Vec3, 2>& sides = piece.featureEdgeNormals[e];
     for (int turn = 1; turn < kTurns; ++turn) {
       const Real t = Real(turn) / Real(kTurns);
       const Vec3 normal = normalizedOrZero(sides[0] * (1 - t) + sides[1] * t);
       if (normal == Vec3{}) continue;
-      consider(Plane{normal, dot(normal, a)});
+      consider(Plane{normal, dot(normal, onEdge)});
     }
   }
   if (bestCost == std::numeric_limits<Real>::max()) return false;

@@ -319,9 +319,8 @@ void checkSettings(const ToolModelSettings& settings) {
   }
 }
 
-// Edges shared by two triangles whose planes differ.
-std::vector<std::array<Index, 2>> featureEdgesOf(const ConvexMesh& mesh, const std::vector<Plane>& planes) {
-  std::vector<std::array<Index, 2>> edges;
+// Edges shared by two triangles whose planes differ, with those two planes' normals.
+void findFeatureEdges(const ConvexMesh& mesh, const std::vector<Plane>& planes, ToolModel& model) {
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     for (int k = 0; k < 3; ++k) {
       const Index from = mesh.triangles[t][k];
@@ -335,14 +334,14 @@ std::vector<std::array<Index, 2>> featureEdgesOf(const ConvexMesh& mesh, const s
                             (other[2] == to && other[0] == from);
         if (shares) {
           if (dot(planes[t].normal, planes[n].normal) < 1 - 1e-9) {
-            edges.push_back({from, to});
+            model.featureEdges.push_back({from, to});
+            model.featureEdgeNormals.push_back({planes[t].normal, planes[n].normal});
           }
           break;
         }
       }
     }
   }
-  return edges;
 }
 
 }  // namespace
@@ -385,7 +384,7 @@ ToolModel buildToolModel(const ConvexMesh& mesh, const ToolModelSettings& settin
   model.planes = facePlanes(mesh);
   model.bounds = bounds(mesh);
   model.thickness = thicknessAcrossFaces(mesh, model.planes);
-  model.featureEdges = featureEdgesOf(mesh, model.planes);
+  findFeatureEdges(mesh, model.planes, model);
   for (const auto& edge : model.featureEdges) {
     model.featureEdgeBoxes.push_back(Aabb::fromPoints(mesh.vertices[edge[0]], mesh.vertices[edge[1]]));
   }

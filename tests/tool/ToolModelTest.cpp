@@ -64,6 +64,17 @@ TEST(ToolModel, PlateGetsAGridOnEveryFaceAndMutualPairsAcrossItsThickness) {
   }
   EXPECT_EQ(model.mutualPairs, largeFaceNodes);
   EXPECT_EQ(model.featureEdges.size(), 12u) << "a box has 12 edges; its face diagonals are not edges";
+  ASSERT_EQ(model.featureEdgeNormals.size(), model.featureEdges.size());
+  for (std::size_t e = 0; e < model.featureEdges.size(); ++e) {
+    const std::array<Vec3, 2>& sides = model.featureEdgeNormals[e];
+    EXPECT_NEAR(dot(sides[0], sides[1]), 0, 1e-12) << "a box's edge joins two perpendicular faces";
+    for (const Vec3& normal : sides) {
+      // Both ends of the edge lie on the face: as far along its normal as the box reaches.
+      Real farthest = -1;
+      for (const Vec3& corner : model.mesh.vertices) farthest = std::max(farthest, dot(normal, corner));
+      for (Index end : model.featureEdges[e]) EXPECT_NEAR(dot(normal, model.mesh.vertices[end]), farthest, 1e-12);
+    }
+  }
 }
 
 TEST(ToolModel, BoxFaceGridSamplesOnlyTheTwoLargeFaces) {

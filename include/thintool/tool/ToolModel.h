@@ -99,6 +99,7 @@ struct ToolModel {
   /// edges of the solid), as mesh vertex pairs: what can slice between soft nodes.
   std::vector<std::array<Index, 2>> featureEdges;
   std::vector<Aabb> featureEdgeBoxes;  ///< one per feature edge
+  std::vector<std::array<Vec3, 2>> featureEdgeNormals;  ///< one per feature edge: its two faces' outward normals
 
   Index mutualPairs = 0;    ///< nodes whose partner chose them back
   Index unpairedNodes = 0;  ///< nodes whose association ray found nothing within its length
