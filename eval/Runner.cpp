@@ -361,7 +361,20 @@ RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
     return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
   };
   const int settleSteps = int(std::lround(scene.settleSeconds / scene.timeStep));
-  for (int i = 0; i < settleSteps; ++i) stepWorld();
+  double settleNodeSpeed = 0;
+  {
+    std::vector<Vec3> before = nodesOf(soft);
+    for (int i = 0; i < settleSteps; ++i) {
+      stepWorld();
+      const std::vector<Vec3> after = nodesOf(soft);
+      for (std::size_t n = 0; n < after.size(); ++n) {
+        // A non-finite node here shows in the measured steps; NaN stays out of the peak.
+        const double speed = length(after[n] - before[n]) / scene.timeStep;
+        if (speed > settleNodeSpeed) settleNodeSpeed = speed;
+      }
+      before = after;
+    }
+  }
   double softBottom = std::numeric_limits<double>::max();
   double softTop = -softBottom;
   for (int i = 0; i < soft.m_nodes.size(); ++i) {
@@ -431,6 +444,7 @@ RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
   result.timeStep = scene.timeStep;
   result.softNodes = soft.m_nodes.size();
   result.softFaces = soft.m_faces.size();
+  result.settleNodeSpeed = settleNodeSpeed;
   for (Tool* tool : w.thinTools) result.toolNodes += tool != nullptr ? int(tool->nodeCount()) : 0;
 
   const std::vector<Triangle> faces = scenes::faceIndices(soft);

@@ -43,6 +43,9 @@ struct RunResult {
   double peakForce = 0;          ///< N, largest |force| of a step
   /// m/s, the fastest soft node over the measured steps: its displacement in a step over the step.
   double peakNodeSpeed = 0;
+  /// m/s, the fastest soft node while the body settled, before any tool moved (the tools wait
+  /// far above it then): how hard the body's own solver shook it.
+  double settleNodeSpeed = 0;
   /// m/s, the fastest point of any tool over the measured steps: |v| + |ω|·reach, v and ω from the
   /// body's pose before and after the step (kinematic or dynamic alike), reach the farthest corner
   /// of its pieces from the body's origin.

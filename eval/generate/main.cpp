@@ -90,6 +90,7 @@ void printSteps(const RunResult& run) {
               run.softFaces, run.softNodes, run.truth.crossedNodes, run.truth.toolInsideSteps,
               run.truth.selfIntersectingSteps, run.truth.piercedSteps,
               run.truth.maxPenetration * 1000, run.peakNodeSpeed, run.peakToolSpeed);
+  std::printf("fastest node while the body settled, before the tools moved: %.4g m/s\n", run.settleNodeSpeed);
   if (run.truth.pinnedReachedStep > 0) {
     std::printf("a kinematic tool reached a pinned node in step %d: the geometric checks judged the steps before\n",
                 run.truth.pinnedReachedStep);
