@@ -6,6 +6,7 @@
 // algorithm objects: Bullet frees those when a pair separates and creates them anew when it
 // returns, and the pair's algorithm only tells the state when that happens.
 
+#include <thintool/core/StepStamps.h>
 #include <thintool/detection/Detection.h>
 #include <thintool/detection/SweptDetection.h>
 #include <thintool/force/ContactForce.h>
@@ -48,12 +49,11 @@ struct PairState {
   /// not been seen moving.
   Aabb softBounds;
   bool hasSoftBounds = false;
-  /// Where swept detection left each soft node at the end of its last step (world), and the
-  /// step that was: the next sweep starts there rather than at Bullet's start of step, so that the
-  /// soft solver's own moves in between (links, pressure) are swept too.
+  /// Where swept detection left each soft node at the end of its last step (world), stamped with
+  /// the sweep that left it there: the next sweep starts there rather than at Bullet's start of
+  /// step, so that the soft solver's own moves in between (links, pressure) are swept too.
   std::vector<Vec3> lastPositions;
-  std::vector<std::uint32_t> lastStep;
-  std::uint32_t step = 1;
+  StepStamps sweptNodes;
   SoftPatch patch;
   std::vector<Index> patchVertexOfNode;  ///< soft node -> patch vertex, kInvalidIndex when absent
   std::vector<const btDbvtNode*> traversalStack;
@@ -108,7 +108,7 @@ struct PairState {
     history.reset();
     sides.forget();
     force.history.reset();
-    step += 2;  // what was recorded before is no longer the previous step
+    sweptNodes.forget();
     hasPreviousPose = false;
     skinInEffect = -1;
     hasSoftBounds = false;

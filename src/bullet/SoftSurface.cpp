@@ -97,7 +97,7 @@ void gatherFace(const btSoftBody& softBody, Index faceId, const Aabb& toolBox, P
     motionBox.include(ends[k]);
     motionBox.include(starts[k]);
     ids[k] = nodeIndex(softBody, node);
-    if (state.lastStep[ids[k]] == state.step) {
+    if (state.sweptNodes.stampedLastStep(ids[k])) {
       motionBox.include(state.lastPositions[ids[k]]);
     }
   }
@@ -116,7 +116,7 @@ void gatherFace(const btSoftBody& softBody, Index faceId, const Aabb& toolBox, P
       patch.inverseMasses.push_back(face.m_n[k]->m_im);
       patch.nodeIds.push_back(id);
       Real moved = lengthSquared(ends[k] - starts[k]);
-      if (state.lastStep[id] == state.step) {
+      if (state.sweptNodes.stampedLastStep(id)) {
         moved = std::max(moved, lengthSquared(ends[k] - state.lastPositions[id]));
       }
       if (moved > largestSquared) {  // false for NaN

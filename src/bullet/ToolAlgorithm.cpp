@@ -324,7 +324,7 @@ void ToolAlgorithm::prepareBuffers(PieceStep& step) {
   state.candidateFaces.reserve(softBody.m_faces.size());
   state.sides.resize(static_cast<Index>(softBody.m_nodes.size()), static_cast<Index>(softBody.m_faces.size()));
   state.lastPositions.resize(softBody.m_nodes.size());
-  state.lastStep.assign(softBody.m_nodes.size(), 0);
+  state.sweptNodes.reset(static_cast<Index>(softBody.m_nodes.size()));
 }
 
 // The soft faces near the piece into the pair's patch, and the skin the pair keeps this step.
@@ -333,6 +333,8 @@ void ToolAlgorithm::gather(PieceStep& step) {
   PairState& state = step.state;
   btSoftBody& softBody = step.softBody;
   step.fullSkin = options.skin.value_or(Real(softBody.getCollisionShape()->getMargin()));
+  // From here on, where the previous sweep left the nodes is the previous step's.
+  if (step.swept) state.sweptNodes.beginStep();
   Aabb reach = transformedBounds(step.model.bounds, step.pose);
   if (step.swept) {
     reach.include(transformedBounds(step.model.bounds, step.previousPose));
@@ -353,13 +355,12 @@ void ToolAlgorithm::gather(PieceStep& step) {
 void ToolAlgorithm::detect(PieceStep& step) {
   PairState& state = step.state;
   if (step.swept) {
-    ++state.step;
     SoftPatch& patch = state.patch;
     patch.checkedPositions.resize(patch.vertexCount());
     for (Index v = 0; v < patch.vertexCount(); ++v) {
       const Index id = patch.nodeIds[v];
       patch.checkedPositions[v] =
-          state.lastStep[id] + 1 == state.step ? state.lastPositions[id] : patch.previousPositions[v];
+          state.sweptNodes.stampedLastStep(id) ? state.lastPositions[id] : patch.previousPositions[v];
     }
     detectSwept(step.context(), patch, state.sides, m_tool.m_sweptWorkspace,
                 state.detection);
@@ -401,7 +402,7 @@ void ToolAlgorithm::rememberSweep(PieceStep& step) {
   for (Index v = 0; v < patch.vertexCount(); ++v) {
     state.softReach = std::max(state.softReach, length(patch.positions[v] - patch.previousPositions[v]));
     state.lastPositions[patch.nodeIds[v]] = patch.positions[v];
-    state.lastStep[patch.nodeIds[v]] = state.step;
+    state.sweptNodes.stamp(patch.nodeIds[v]);
   }
   for (const NodeCorrection& correction : state.response.corrections) {
     const Index v = correction.vertex;

@@ -246,13 +246,13 @@ struct Sweep {
 }  // namespace
 
 void SideMemory::resize(Index softNodes, Index softFaces) {
-  if (m_nodeStamp.size() != softNodes) {
+  if (m_nodeStamps.size() != softNodes) {
     m_nodePlane.assign(softNodes, kInvalidIndex);
-    m_nodeStamp.assign(softNodes, 0);
+    m_nodeStamps.reset(softNodes);
   }
-  if (m_faceStamp.size() != softFaces) {
+  if (m_faceStamps.size() != softFaces) {
     m_faceSideSign.assign(softFaces, 0);
-    m_faceStamp.assign(softFaces, 0);
+    m_faceStamps.reset(softFaces);
   }
 }
 

@@ -105,16 +105,14 @@ RigidFit fitRigidMotion(const RestShape& rest, const std::vector<Vec3>& anchorPo
 }
 
 void ForceHistory::resize(Index faceCount) {
-  if (m_lastStep.size() != faceCount) {
+  if (m_inContact.size() != faceCount) {
     m_lastDeformation.assign(faceCount, 0);
     m_rate.assign(faceCount, 0);
-    m_lastStep.assign(faceCount, 0);
+    m_inContact.reset(faceCount);
   }
 }
 
-void ForceHistory::reset() {
-  m_step += 2;  // nothing recorded so far is the previous step any more
-}
+void ForceHistory::reset() { m_inContact.forget(); }
 
 void computeContactForces(const StepContext& step, const SoftPatch& patch, const std::vector<Contact>& contacts,
                           const ForceInput& input, ForceResult& out) {
@@ -129,7 +127,7 @@ void computeContactForces(const StepContext& step, const SoftPatch& patch, const
   std::vector<FaceForce>& outForces = out.faces;
   THINTOOL_ASSERT(patch.consistent());
   outForces.clear();
-  ++history.m_step;
+  history.m_inContact.beginStep();
   if (!settings.enabled || !(dt > 0)) {
     return;
   }
@@ -166,7 +164,7 @@ void computeContactForces(const StepContext& step, const SoftPatch& patch, const
       pushed += vertexNormal[v];
     }
     const Index softFace = patch.faceIds[f];
-    if (lengthSquared(pushed) == 0 || softFace >= history.m_lastStep.size()) {
+    if (lengthSquared(pushed) == 0 || softFace >= history.m_inContact.size()) {
       continue;
     }
     Vec3 centroid;
@@ -203,7 +201,7 @@ void computeContactForces(const StepContext& step, const SoftPatch& patch, const
     }
     // ẋ: from the face's own last value when it was in contact last step, else from where its
     // nodes started this step; a face entering contact starts its filter there.
-    const bool continuing = history.m_lastStep[softFace] + 1 == history.m_step;
+    const bool continuing = history.m_inContact.stampedLastStep(softFace);
     const Real before = continuing ? history.m_lastDeformation[softFace] : previousDeformation;
     const Real rawRate = (deformation - before) / dt;
     Real rate = continuing ? history.m_rate[softFace] + smoothing * (rawRate - history.m_rate[softFace]) : rawRate;
@@ -212,7 +210,7 @@ void computeContactForces(const StepContext& step, const SoftPatch& patch, const
     }
     history.m_lastDeformation[softFace] = deformation;
     history.m_rate[softFace] = rate;
-    history.m_lastStep[softFace] = history.m_step;
+    history.m_inContact.stamp(softFace);
 
     Real magnitude = settings.law ? settings.law(deformation, rate)
                                   : huntCrossleyForce(settings.huntCrossley, deformation, rate);

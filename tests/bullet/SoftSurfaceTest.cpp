@@ -42,7 +42,7 @@ struct Ball {
     }
     body->predictMotion(kTimeStep);
     state.lastPositions.resize(body->m_nodes.size());
-    state.lastStep.assign(body->m_nodes.size(), 0);
+    state.sweptNodes.reset(static_cast<Index>(body->m_nodes.size()));
   }
 
   std::vector<Index> gather(const Aabb& box, Real leafSlack) {

@@ -26,6 +26,7 @@
 /// Each contact asks the response to return its soft point to that side, the skin away from the
 /// tool's surface. The paper's checks have nothing to filter here: the side comes from the motion.
 
+#include <thintool/core/StepStamps.h>
 #include <thintool/detection/Detection.h>
 
 #include <cstdint>
@@ -39,38 +40,43 @@ class SideMemory {
  public:
   void resize(Index softNodes, Index softFaces);
   /// Starts a step: what was recorded in the previous step stays readable during this one.
-  void beginStep() { ++m_step; }
+  void beginStep() {
+    m_nodeStamps.beginStep();
+    m_faceStamps.beginStep();
+  }
   /// Forgets everything, for a pair that separated.
-  void forget() { m_step += 2; }
+  void forget() {
+    m_nodeStamps.forget();
+    m_faceStamps.forget();
+  }
 
   /// The tool face a soft node entered through, or kInvalidIndex.
   Index nodeSide(Index softNode) const {
-    return softNode < m_nodeStamp.size() && recent(m_nodeStamp[softNode]) ? m_nodePlane[softNode] : kInvalidIndex;
+    return softNode < m_nodeStamps.size() && m_nodeStamps.stampedRecently(softNode) ? m_nodePlane[softNode]
+                                                                                   : kInvalidIndex;
   }
   void setNodeSide(Index softNode, Index plane) {
-    if (softNode < m_nodeStamp.size()) {
+    if (softNode < m_nodeStamps.size()) {
       m_nodePlane[softNode] = plane;
-      m_nodeStamp[softNode] = m_step;
+      m_nodeStamps.stamp(softNode);
     }
   }
   /// +1 or -1: the side of the soft face's own normal the tool was on; 0 when unknown.
   int faceSide(Index softFace) const {
-    return softFace < m_faceStamp.size() && recent(m_faceStamp[softFace]) ? m_faceSideSign[softFace] : 0;
+    return softFace < m_faceStamps.size() && m_faceStamps.stampedRecently(softFace) ? m_faceSideSign[softFace] : 0;
   }
   void setFaceSide(Index softFace, int side) {
-    if (softFace < m_faceStamp.size()) {
+    if (softFace < m_faceStamps.size()) {
       m_faceSideSign[softFace] = static_cast<std::int8_t>(side);
-      m_faceStamp[softFace] = m_step;
+      m_faceStamps.stamp(softFace);
     }
   }
 
  private:
-  bool recent(std::uint32_t stamp) const { return stamp + 1 >= m_step && stamp != 0; }
-  std::uint32_t m_step = 2;
   std::vector<Index> m_nodePlane;
-  std::vector<std::uint32_t> m_nodeStamp;
+  StepStamps m_nodeStamps;
   std::vector<std::int8_t> m_faceSideSign;
-  std::vector<std::uint32_t> m_faceStamp;
+  StepStamps m_faceStamps;
 };
 
 /// Scratch memory of swept detection, reused by every step and pair.

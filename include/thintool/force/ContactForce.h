@@ -26,6 +26,7 @@
 /// allows, and a second tissue spring on top would count the tissue twice.
 
 #include <thintool/core/Math.h>
+#include <thintool/core/StepStamps.h>
 #include <thintool/detection/Detection.h>
 #include <thintool/detection/SoftPatch.h>
 #include <thintool/tool/StepContext.h>
@@ -129,9 +130,8 @@ class ForceHistory {
                                    ForceResult&);
   std::vector<Real> m_lastDeformation;
   std::vector<Real> m_rate;
-  std::vector<std::uint32_t> m_lastStep;
+  StepStamps m_inContact;  ///< the faces in contact in a step, as each step leaves them
   std::vector<Vec3> m_vertexNormal;  ///< per patch vertex, scratch: sum of its contacts' normals
-  std::uint32_t m_step = 1;
 };
 
 /// What the force model reads besides the step and its contacts.
