@@ -26,6 +26,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 
 namespace thintool::eval {
 
@@ -284,6 +285,14 @@ std::vector<Vec3> nodesOf(const btSoftBody& soft) {
   return nodes;
 }
 
+// The fastest node between two snapshots of the body, a step apart (m/s); a node that is not
+// finite adds nothing (the finiteness check reports it).
+double fastestNodeSpeed(const std::vector<Vec3>& before, const std::vector<Vec3>& after, double timeStep) {
+  double fastest = 0;
+  for (std::size_t n = 0; n < after.size(); ++n) fastest = std::max(fastest, length(after[n] - before[n]) / timeStep);
+  return fastest;
+}
+
 }  // namespace
 
 RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
@@ -362,18 +371,12 @@ RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
   };
   const int settleSteps = int(std::lround(scene.settleSeconds / scene.timeStep));
   double settleNodeSpeed = 0;
-  {
-    std::vector<Vec3> before = nodesOf(soft);
-    for (int i = 0; i < settleSteps; ++i) {
-      stepWorld();
-      const std::vector<Vec3> after = nodesOf(soft);
-      for (std::size_t n = 0; n < after.size(); ++n) {
-        // A non-finite node here shows in the measured steps; NaN stays out of the peak.
-        const double speed = length(after[n] - before[n]) / scene.timeStep;
-        if (speed > settleNodeSpeed) settleNodeSpeed = speed;
-      }
-      before = after;
-    }
+  std::vector<Vec3> settling = nodesOf(soft);
+  for (int i = 0; i < settleSteps; ++i) {
+    stepWorld();
+    std::vector<Vec3> settled = nodesOf(soft);
+    settleNodeSpeed = std::max(settleNodeSpeed, fastestNodeSpeed(settling, settled, scene.timeStep));
+    settling = std::move(settled);
   }
   double softBottom = std::numeric_limits<double>::max();
   double softTop = -softBottom;
@@ -491,9 +494,7 @@ RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
                            scene.timeStep;
       result.peakToolSpeed = std::max(result.peakToolSpeed, speed);
     }
-    for (std::size_t n = 0; n < nodes.size(); ++n) {
-      sample.nodeSpeed = std::max(sample.nodeSpeed, length(nodes[n] - previousNodes[n]) / scene.timeStep);
-    }
+    sample.nodeSpeed = fastestNodeSpeed(previousNodes, nodes, scene.timeStep);
     result.peakNodeSpeed = std::max(result.peakNodeSpeed, sample.nodeSpeed);
     previousNodes = nodes;
     const GroundTruthStep& step = truth.update(toolPoses, nodes, faces);
