@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 
 namespace thintool {
@@ -200,21 +201,31 @@ TEST(Separation, FacesOfMovableNodesShareAPinnedNeighboursMove) {
   EXPECT_FALSE(triangleMeetsPiece(piece, p.patch.positions[a], p.patch.positions[b], p.patch.positions[c], 0));
 }
 
+// A still face across the still plate, corner `pinned` pinned: where the stage leaves its corners,
+// and what it left pierced.
+struct StillFace {
+  std::array<Vec3, 3> x;
+  Index facesPierced = 0;
+};
+StillFace separateStillFace(const ToolModel& piece, const std::array<Vec3, 3>& corners, int pinned) {
+  Patch p;
+  for (int k = 0; k < 3; ++k) p.node(corners[k], corners[k], k == pinned ? 0 : 1);
+  p.patch.faces.push_back({0, 1, 2});
+  EXPECT_TRUE(triangleMeetsPiece(piece, corners[0], corners[1], corners[2], 0)) << "the face must start across it";
+  const SeparationCounts counts = separateFromPiece(piece, PieceMotion(Pose{}, Pose{}, 0.1), {}, p.patch);
+  return {{p.patch.positions[0], p.patch.positions[1], p.patch.positions[2]}, counts.facesPierced};
+}
+
 TEST(Separation, AFaceHangingFromAPinnedNodeAcrossTheRimSwingsBeyondTheRim) {
   // A sheet's corner face: pinned above the plate and beyond its +z rim, one free node under the
   // plate, one beside its +x edge. The edge from the free node under the plate up to the pinned
   // one passes through the plate near the rim.
   const ToolModel piece = plate();
-  Patch p;
-  const Vec3 corners[3] = {{0.15, -0.012, 0.17}, {0.25, 0.02, 0.17}, {0.15, 0.1, 0.25}};
-  const Index under = p.node(corners[0], corners[0]);
-  const Index beside = p.node(corners[1], corners[1]);
-  const Index pinned = p.node(corners[2], corners[2], 0);
-  p.patch.faces.push_back({under, beside, pinned});
-  ASSERT_TRUE(triangleMeetsPiece(piece, corners[0], corners[1], corners[2], 0));
-  const SeparationCounts counts = separateFromPiece(piece, PieceMotion(Pose{}, Pose{}, 0.1), {}, p.patch);
-  const std::vector<Vec3>& x = p.patch.positions;
-  EXPECT_EQ(counts.facesPierced, 0u);
+  const std::array<Vec3, 3> corners{{{0.15, -0.012, 0.17}, {0.25, 0.02, 0.17}, {0.15, 0.1, 0.25}}};
+  const int under = 0, beside = 1, pinned = 2;
+  const StillFace face = separateStillFace(piece, corners, pinned);
+  const std::array<Vec3, 3>& x = face.x;
+  EXPECT_EQ(face.facesPierced, 0u);
   EXPECT_FALSE(triangleMeetsPiece(piece, x[under], x[beside], x[pinned], 0));
   EXPECT_EQ(x[pinned], corners[2]);
   // Round the rim, not through the plate: the node under it stays under it.
@@ -228,16 +239,11 @@ TEST(Separation, AFaceWrappedRoundTheRimFromAPinnedNodeUnderThePlateSwingsAboutT
   // plane has the pinned node beyond it and a straight way out for the node above; a plane through
   // the rim, turned between the underside and the +z side, has both.
   const ToolModel piece = plate();
-  Patch p;
-  const Vec3 corners[3] = {{0.1, -0.15, 0.18}, {0.05, 0.05, 0.199}, {0, 0, 0.22}};
-  const Index pinned = p.node(corners[0], corners[0], 0);
-  const Index above = p.node(corners[1], corners[1]);
-  const Index beyond = p.node(corners[2], corners[2]);
-  p.patch.faces.push_back({pinned, above, beyond});
-  ASSERT_TRUE(triangleMeetsPiece(piece, corners[0], corners[1], corners[2], 0));
-  const SeparationCounts counts = separateFromPiece(piece, PieceMotion(Pose{}, Pose{}, 0.1), {}, p.patch);
-  const std::vector<Vec3>& x = p.patch.positions;
-  EXPECT_EQ(counts.facesPierced, 0u);
+  const std::array<Vec3, 3> corners{{{0.1, -0.15, 0.18}, {0.05, 0.05, 0.199}, {0, 0, 0.22}}};
+  const int pinned = 0, above = 1, beyond = 2;
+  const StillFace face = separateStillFace(piece, corners, pinned);
+  const std::array<Vec3, 3>& x = face.x;
+  EXPECT_EQ(face.facesPierced, 0u);
   EXPECT_FALSE(triangleMeetsPiece(piece, x[pinned], x[above], x[beyond], 0));
   EXPECT_EQ(x[pinned], corners[0]);
   // Round the rim, not through the plate.
