@@ -30,8 +30,8 @@ btScalar applyNodeReaction(btRigidBody& tool, const btVector3& nodePosition, con
 /// A node that cannot give way (inverse mass 0) at node (m, world) stops tool, whose piece is at
 /// pieceNow, short of it over the next step of 1/inverseStep (s): a speculative contact along the
 /// nearest face's normal, as Box2D's, that lets the tool's point there close on the node by the
-/// gap and no more; from inside, the tool leaves fast enough to be out at the end of that step, as
-/// a position solve would move it. The face's plane bounds the node's side of the piece, so the
+/// gap and no more; from inside, or from past a face its motion over that step reaches the node by,
+/// the tool leaves fast enough to be back at the end of that step, as a position solve would move it. The face's plane bounds the node's side of the piece, so the
 /// limit is conservative past an edge. forcesPending: the tool's accumulated force and torque are
 /// yet to act over that step (in the collision pass, before Bullet's solver adds them). Returns the
 /// impulse applied (N s).

@@ -2,6 +2,11 @@
 // Copyright (c) 2026 The ThinTool developers
 #include "../../src/bullet/ToolReaction.h"
 
+#include <thintool/bullet/Convert.h>
+#include <thintool/geometry/ConvexMesh.h>
+#include <thintool/tool/ToolModel.h>
+
+#include <LinearMath/btTransformUtil.h>
 #include <btBulletDynamicsCommon.h>
 
 #include <gtest/gtest.h>
@@ -66,6 +71,33 @@ TEST(ToolReaction, ANodeThatCannotGiveWayStopsTheTool) {
   auto tool = movingBox(shape, 2, btVector3(0, -3, 0));
   applyNodeReaction(*tool, btVector3(0, btScalar(-0.02), 0), btVector3(0, btScalar(-0.001), 0), 0, 1 / kStep, btVector3(0, 0, 0));
   EXPECT_NEAR(tool->getLinearVelocity().y(), 0, 1e-5);
+}
+
+// A plate turning 60° a step about its long axis while it slides along it: at the start its point
+// at a pinned node 1 cm above it moves along the plate, not towards the node, and at the end of
+// the step the node is 3 cm below it, outside. On its way the plate's face sweeps through the node;
+// the stop must see that and hold the plate on the node's side.
+TEST(ToolReaction, APinnedNodeStopsATurningToolThatWouldSweepThroughIt) {
+  btBoxShape shape(btVector3(0.2f, 0.01f, 0.2f));
+  auto tool = movingBox(shape, 2, btVector3(0, 0, 3));
+  const btScalar spin = btScalar(kPi / 3) / kStep;
+  tool->setAngularVelocity(btVector3(spin, 0, 0));
+  const ToolModel plate = buildToolModel(makeBoxMesh({0.2, 0.01, 0.2}), ToolModelSettings{});
+  const Vec3 node{0.1, 0.02, 0};
+  stopShortOfPinnedNode(*tool, plate, Pose{}, node, 1 / kStep, false);
+
+  // The plate's motion over the step as Bullet integrates it, seen from the plate at 100 instants.
+  const btTransform start = tool->getCenterOfMassTransform();
+  for (int k = 1; k <= 100; ++k) {
+    btTransform then;
+    btTransformUtil::integrateTransform(start, tool->getLinearVelocity(), tool->getAngularVelocity(),
+                                        kStep * btScalar(k) / 100, then);
+    const btVector3 seen = then.invXform(toBt(node));
+    EXPECT_GT(outsideDistance(plate.planes, toVec3(seen)), -1e-4) << "inside the plate at " << k << "% of the step";
+  }
+  btTransform end;
+  btTransformUtil::integrateTransform(start, tool->getLinearVelocity(), tool->getAngularVelocity(), kStep, end);
+  EXPECT_GT(end.invXform(toBt(node)).y(), btScalar(0.01 - 1e-4)) << "the node ends on the far side";
 }
 
 TEST(ToolReaction, ANodeLeavingFasterThanTheToolTakesNothing) {
