@@ -336,8 +336,10 @@ bool keptItsSideAlongArc(const ToolModel& piece, const PieceMotion& motion, cons
 // Those come only with aboutEdges, in the last round, when no face plane serves, and only for a
 // piece with no other near it: turned about an edge, a face between two jaws swings out of one into
 // the other, pass after pass (seeds 3461 and 1032).
-// The whole triangle then lies beyond the plane. False when no plane serves: a pinned node in the
-// piece, or a free node inside it, which the node pass moves first.
+// The whole triangle then lies beyond the plane, within half the clearance at a pinned node: a
+// dynamic tool stopped at a pinned node ends on it, rounding a hair inside (generated seed 4352).
+// False when no plane serves: a pinned node in the piece, or a free node inside it, which the node
+// pass moves first.
 bool swingAboutPinnedNodes(SeparationPatch& patch, const std::array<Index, 3>& face, const ToolModel& piece,
                            const Pose& end, const Vec3 (&local)[3], Real clearance, bool aboutEdges) {
   const std::vector<Plane>& planes = piece.planes;
@@ -348,7 +350,7 @@ bool swingAboutPinnedNodes(SeparationPatch& patch, const std::array<Index, 3>& f
     for (int k = 0; k < 3; ++k) {
       const Real distance = plane.signedDistance(local[k]);
       if (!(patch.inverseMasses[face[k]] > 0)) {
-        if (!(distance >= 0)) return;
+        if (!(distance >= -clearance / 2)) return;
       } else if (distance < clearance) {
         const Vec3 to = local[k] + plane.normal * (clearance - distance);
         if (clipSegmentConvex(planes, 0, local[k], to).hit) return;
