@@ -69,7 +69,8 @@ struct BulletSettings {
   /// With friction, a node that sticks is held to the tool's surface motion (its hold is not
   /// frictionless), and the soft bodies the tool touches get a contact pass after the links in each
   /// of their position iterations (btSoftBody::m_cfg.m_psequence), so that the links of a grasped
-  /// body do not drag the held nodes along the jaws; a dynamic tool's soft bodies get the pass too.
+  /// body do not drag the held nodes along the jaws; so do those of a dynamic tool that the force
+  /// model carries (force.applyToDynamicTool).
   bool holdInSolver = true;
   /// How far along its plane a hold without friction reaches, in multiples of the pair's skin
   /// beyond the skin (>= 0): it acts on its node only while the node, put on the hold's plane,
