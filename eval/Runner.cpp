@@ -420,26 +420,37 @@ RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
     trajectories.push_back(trajectory);
   }
 
-  // Out of the parking place: a jump, not a motion for swept detection to sweep.
+  // Out of the parking place: a jump, not a motion for swept detection to sweep. A dynamic body is
+  // placed by hand at rest for the step of the jump, and launched after it: launched with it, it
+  // flew a step's worth unswept, and a fast needle began the judged steps inside the body.
   std::vector<Pose> toolPoses;
+  const auto placeDynamic = [&](std::size_t t, const Pose& pose, const Vec3& velocity) {
+    btRigidBody& body = *w.tools[t];
+    body.setWorldTransform(toTransform(pose));
+    body.setInterpolationWorldTransform(toTransform(pose));
+    body.setLinearVelocity(toBt(velocity));
+    body.setAngularVelocity(btVector3(0, 0, 0));
+    body.setInterpolationLinearVelocity(body.getLinearVelocity());
+    body.setInterpolationAngularVelocity(btVector3(0, 0, 0));
+    body.clearForces();
+  };
   for (std::size_t t = 0; t < scene.tools.size(); ++t) {
     const Pose start = poseAt(trajectories[t], 0);
     w.motions[t]->setWorldTransform(toTransform(start));
-    if (scene.tools[t].mass > 0) {
-      // A dynamic body is placed by hand and launched; from here on it moves by itself.
-      btRigidBody& body = *w.tools[t];
-      body.setWorldTransform(toTransform(start));
-      body.setInterpolationWorldTransform(toTransform(start));
-      body.setLinearVelocity(toBt(launchVelocity(trajectories[t])));
-      body.setAngularVelocity(btVector3(0, 0, 0));
-      body.setInterpolationLinearVelocity(body.getLinearVelocity());
-      body.setInterpolationAngularVelocity(btVector3(0, 0, 0));
-      body.clearForces();
-    }
+    if (scene.tools[t].mass > 0) placeDynamic(t, start, {});
     if (w.thinTools[t] != nullptr) w.thinTools[t]->resetMotion();
     toolPoses.push_back(start);
   }
   stepWorld();
+  // Launched along the path mapped onto the settled body, at the speed it was planned with: the
+  // mapping stretches the path with the body, and a ball that settled 3.7 m tall launched a needle
+  // planned at 42.6 m/s at 176 m/s, past the generator's 50 m/s (generated seed 9098).
+  for (std::size_t t = 0; t < scene.tools.size(); ++t) {
+    if (!(scene.tools[t].mass > 0)) continue;
+    const Vec3 planned = launchVelocity(scene.tools[t].trajectory);
+    placeDynamic(t, toPose(w.tools[t]->getWorldTransform()),
+                 normalizedOrZero(launchVelocity(trajectories[t])) * length(planned));
+  }
 
   RunResult result;
   result.scene = scene.name;
