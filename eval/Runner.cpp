@@ -444,7 +444,7 @@ RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
   stepWorld();
   // Launched along the path mapped onto the settled body, at the speed it was planned with: the
   // mapping stretches the path with the body, and a ball that settled 3.7 m tall launched a needle
-  // planned at 42.6 m/s at 176 m/s, past the generator's 50 m/s (generated seed 9098).
+  // planned at 30 m/s at 176 m/s, past the generator's 50 m/s (generated seed 9098).
   for (std::size_t t = 0; t < scene.tools.size(); ++t) {
     if (!(scene.tools[t].mass > 0)) continue;
     const Vec3 planned = launchVelocity(scene.tools[t].trajectory);
