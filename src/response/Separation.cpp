@@ -51,6 +51,7 @@ void axisAngleOf(const Mat3& r, Vec3& outAxis, Real& outAngle) {
 struct NodeVerdict {
   bool fix = false;
   Index plane = kInvalidIndex;  // the face the node goes back in front of
+  bool sparedByArc = false;     // the chord alone would take it back: the arc reading spared it
 };
 
 // Reads a node's path through the piece (see the file comment of Separation.h) and says whether,
@@ -71,7 +72,8 @@ NodeVerdict judgeNode(const ToolModel& piece, const PieceMotion& motion, const P
   outEndLocal = endLocal;
   const ClipResult chord = clipSegmentConvex(planes, 0, startLocal, endLocal);
   Index entered = chord.hit ? chord.enterPlane : kInvalidIndex;
-  bool carried = chord.hit && carries(chord.enterPlane, chord.leavePlane);
+  const bool chordCarried = chord.hit && carries(chord.enterPlane, chord.leavePlane);
+  bool carried = chordCarried;
   const int samples = motion.samples();
   if (samples > 1) {
     Vec3 previous = startLocal;
@@ -94,10 +96,9 @@ NodeVerdict judgeNode(const ToolModel& piece, const PieceMotion& motion, const P
   if (outsideDistance(planes, endLocal, &nearest) < 0) {
     return {true, entered != kInvalidIndex ? entered : nearest};
   }
-  if (carried && planes[chord.enterPlane].signedDistance(endLocal) < clearance) {
-    return {true, chord.enterPlane};
-  }
-  return {};
+  const bool behindEntry = chordCarried && planes[chord.enterPlane].signedDistance(endLocal) < clearance;
+  if (carried && behindEntry) return {true, chord.enterPlane};
+  return {false, kInvalidIndex, behindEntry};
 }
 
 // The extent of points along an axis.
@@ -640,8 +641,11 @@ void countWhatIsLeft(const ToolModel& piece, const Pose& end, const SeparationPa
 // moved against. Applied only if fewer faces then meet the piece than before, and, with
 // sparePinnedFaces, only if no face the group touches has a pinned node: such a face cannot come
 // along, and another piece of the tool, which this one cannot see, may then find it in its way.
-Index carryStuckFacesWithPiece(const ToolModel& piece, const PieceMotion& motion, Real tolerance,
-                               bool sparePinnedFaces, SeparationPatch& patch) {
+// joinsFirst(f) picks faces the group starts from besides those that meet the piece; with
+// noMoreMeeting the carry is applied when no more faces then meet the piece than before.
+template <typename JoinsFirst>
+Index carryFacesWithPiece(const ToolModel& piece, const PieceMotion& motion, Real tolerance, bool sparePinnedFaces,
+                          bool noMoreMeeting, const JoinsFirst& joinsFirst, SeparationPatch& patch) {
   constexpr int kMostGrowths = 16;
   const Pose& end = motion.end();
   const Index vertexCount = patch.vertexCount();
@@ -659,12 +663,14 @@ Index carryStuckFacesWithPiece(const ToolModel& piece, const PieceMotion& motion
     return grew;
   };
   const int before = facesMeetingWithGroupCarried(piece, end, patch, tolerance);
-  if (before == 0) return 0;
-  for (const std::array<Index, 3>& face : patch.faces) {
+  if (before == 0 && !noMoreMeeting) return 0;
+  bool any = false;
+  for (std::size_t f = 0; f < patch.faces.size(); ++f) {
     Vec3 now[3];
-    shiftedFace(patch, end, face, {}, now);
-    if (TriangleAxes(piece, now, nullptr, tolerance).meets()) join(face);
+    shiftedFace(patch, end, patch.faces[f], {}, now);
+    if (TriangleAxes(piece, now, nullptr, tolerance).meets() || joinsFirst(f)) any = join(patch.faces[f]) || any;
   }
+  if (!any) return 0;
   for (int growth = 0; growth < kMostGrowths; ++growth) {
     bool grew = false;
     for (const std::array<Index, 3>& face : patch.faces) {
@@ -674,7 +680,8 @@ Index carryStuckFacesWithPiece(const ToolModel& piece, const PieceMotion& motion
     }
     if (!grew) break;
   }
-  if (facesMeetingWithGroupCarried(piece, end, patch, tolerance) >= before) return 0;
+  const int after = facesMeetingWithGroupCarried(piece, end, patch, tolerance);
+  if (noMoreMeeting ? after > before : after >= before) return 0;
   if (sparePinnedFaces) {
     for (const std::array<Index, 3>& face : patch.faces) {
       if (anyInGroup(patch, face) && hasPinnedNode(patch, face)) return 0;
@@ -692,6 +699,8 @@ Index carryStuckFacesWithPiece(const ToolModel& piece, const PieceMotion& motion
   return carried;
 }
 
+const auto noOthers = [](std::size_t) { return false; };
+
 }  // namespace
 
 PieceMotion::PieceMotion(const Pose& bodyStart, const Pose& bodyEnd, Real maxTurnPerSample, const Pose& inBody)
@@ -699,6 +708,12 @@ PieceMotion::PieceMotion(const Pose& bodyStart, const Pose& bodyEnd, Real maxTur
   axisAngleOf(bodyStart.rotation.transposed() * bodyEnd.rotation, m_axis, m_angle);
   const Real samples = std::ceil(m_angle / std::max(maxTurnPerSample, Real(1e-6)));
   m_samples = std::clamp(static_cast<int>(samples), 1, kMostSamples);
+}
+
+PieceMotion PieceMotion::alongChord() const {
+  PieceMotion chord = *this;
+  chord.m_samples = 1;
+  return chord;
 }
 
 Pose PieceMotion::at(Real t) const {
@@ -765,6 +780,7 @@ SeparationCounts separateFromPiece(const ToolModel& piece, const PieceMotion& mo
       const Vec3 move = axes.move(clearance);
       if (move == Vec3{}) continue;
       if (!axes.meets() && motion.samples() > 1 && keptItsSideAlongArc(piece, motion, poses, patch, face)) {
+        if (round == 0) ++counts.arcSpared;
         continue;
       }
       const bool pinned = hasPinnedNode(patch, face);
@@ -787,6 +803,7 @@ SeparationCounts separateFromPiece(const ToolModel& piece, const PieceMotion& mo
       Vec3 local;
       const NodeVerdict verdict =
           judgeNode(piece, motion, poses, patch.startPositions[v], patch.positions[v], clearance, local);
+      if (round == 0 && verdict.sparedByArc) ++counts.arcSpared;
       if (!verdict.fix) continue;
       const Plane& plane = piece.planes[verdict.plane];
       const Vec3 corrected = local + plane.normal * (clearance - plane.signedDistance(local));
@@ -803,7 +820,7 @@ SeparationCounts separateFromPiece(const ToolModel& piece, const PieceMotion& mo
 
   const Real tolerance = clearance / 2;
   if (counts.rounds == std::max(1, settings.maxRounds)) {
-    counts.nodesMoved += carryStuckFacesWithPiece(piece, motion, tolerance, false, patch);
+    counts.nodesMoved += carryFacesWithPiece(piece, motion, tolerance, false, false, noOthers, patch);
   }
   // A movable node the first round judged and left, and nothing moved since, is outside; a face
   // that met nothing in the first round, none of whose nodes moved since, still meets nothing.
@@ -822,7 +839,34 @@ SeparationCounts carryMeetingFaces(const ToolModel& piece, const PieceMotion& mo
   if (vertexCount == 0) return counts;
   const Real tolerance = settings.clearance / 2;
   patch.movedInRound.assign(vertexCount, -1);
-  counts.nodesMoved = carryStuckFacesWithPiece(piece, motion, tolerance, true, patch);
+  counts.nodesMoved = carryFacesWithPiece(piece, motion, tolerance, true, false, noOthers, patch);
+  const auto nothingKnown = [](auto) { return false; };
+  countWhatIsLeft(piece, motion.end(), patch, tolerance, nothingKnown, nothingKnown, counts);
+  return counts;
+}
+
+SeparationCounts carryCrossedFaces(const ToolModel& piece, const PieceMotion& motion,
+                                   const SeparationSettings& settings, SeparationPatch& patch) {
+  SeparationCounts counts;
+  const Index vertexCount = patch.vertexCount();
+  THINTOOL_ASSERT(patch.consistent());
+  if (vertexCount == 0) return counts;
+  const Real tolerance = settings.clearance / 2;
+  Pose poses[kMostSamples + 1];
+  for (int k = 0; k <= motion.samples(); ++k) poses[k] = motion.at(Real(k) / Real(motion.samples()));
+  const auto crossed = [&](std::size_t f) {
+    const std::array<Index, 3>& face = patch.faces[f];
+    if (motion.samples() > 1) return !keptItsSideAlongArc(piece, motion, poses, patch, face);
+    Vec3 now[3];
+    Vec3 before[3];
+    for (int k = 0; k < 3; ++k) {
+      now[k] = motion.end().applyInverse(patch.positions[face[k]]);
+      before[k] = motion.start().applyInverse(patch.startPositions[face[k]]);
+    }
+    return !TriangleAxes(piece, now, before, 0).keptItsSide();
+  };
+  patch.movedInRound.assign(vertexCount, -1);
+  counts.nodesMoved = carryFacesWithPiece(piece, motion, tolerance, false, true, crossed, patch);
   const auto nothingKnown = [](auto) { return false; };
   countWhatIsLeft(piece, motion.end(), patch, tolerance, nothingKnown, nothingKnown, counts);
   return counts;

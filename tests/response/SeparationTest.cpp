@@ -96,7 +96,35 @@ TEST(Separation, AFaceBesideATurningPlateThatNeverReachedItStays) {
   p.patch.faces.push_back({v[0], v[1], v[2]});
   const SeparationCounts counts = separateFromPiece(piece, motion, {}, p.patch);
   EXPECT_EQ(counts.facesMoved, 0u);
+  EXPECT_EQ(counts.arcSpared, 1u);
   for (int k = 0; k < 3; ++k) EXPECT_EQ(p.patch.positions[v[k]], corners[k]) << "node " << k;
+}
+
+TEST(Separation, AlongTheChordAloneAFaceTheArcSparedGoesBackToItsSide) {
+  const ToolModel piece = plate();
+  // The face of the test above: the arc spares it, the chord takes it a third of the way round
+  // the plate. Read along the chord alone, the stage puts it back on a side it had at the start,
+  // seen from the plate, as the glue asks when the plate ended inside a closed body.
+  Pose end;
+  end.rotation = rotationAboutAxis({0, 1, 0}, 2 * kPi / 3);
+  const PieceMotion motion = PieceMotion(Pose{}, end, SeparationSettings{}.maxTurnPerSample).alongChord();
+  EXPECT_EQ(motion.samples(), 1);
+  EXPECT_NEAR(motion.turn(), 2 * kPi / 3, 1e-12);
+  Patch p;
+  const Vec3 corners[3] = {{0.35, -0.1, -0.01}, {0.35, -0.1, 0.01}, {0.35, 0.1, 0}};
+  Index v[3];
+  for (int k = 0; k < 3; ++k) v[k] = p.node(corners[k], corners[k]);
+  p.patch.faces.push_back({v[0], v[1], v[2]});
+  const SeparationCounts counts = separateFromPiece(piece, motion, {}, p.patch);
+  EXPECT_GE(counts.facesMoved, 1u);
+  EXPECT_EQ(counts.arcSpared, 0u);
+  Vec3 local[3];
+  for (int k = 0; k < 3; ++k) local[k] = end.applyInverse(p.patch.positions[v[k]]);
+  EXPECT_FALSE(triangleMeetsPiece(piece, local[0], local[1], local[2], 0));
+  // At the start the face lay beyond the plate's +x rim; left where it is, it would lie on the -x
+  // side, seen from the turned plate. Read along the chord it goes back to the +x side.
+  EXPECT_LT(end.applyInverse(corners[0]).x, 0);
+  EXPECT_GT((local[0].x + local[1].x + local[2].x) / 3, 0.15);
 }
 
 TEST(Separation, HalfTurnAxisIsRecovered) {
@@ -349,6 +377,38 @@ TEST(Separation, TheLastResortCarriesTheFacesThatMeetThePieceWithIt) {
   for (int k = 0; k < 4; ++k) {
     EXPECT_NEAR(length(p.patch.positions[v[k]] - (start[k] + drop)), 0, 1e-12) << "node " << k;
     EXPECT_EQ(p.patch.moved[v[k]], 1);
+  }
+}
+
+TEST(Separation, AFaceCrossedOnTheArcIsCarriedBackToItsPlaceBesideThePiece) {
+  // The plate turns a quarter turn about z: its +x half sweeps up through a small face lying still
+  // 2 cm above it, which ends beside the turned plate, clear of it. A second face, under the -x
+  // half, which turns away from it, is never reached. Carried with the plate, the crossed face's
+  // nodes go where they stood in its frame at the start: 2 cm above its top face, now facing -x.
+  const ToolModel piece = plate();
+  Pose end;
+  end.rotation = rotationAboutAxis({0, 0, 1}, kPi / 2);
+  const PieceMotion motion(Pose{}, end, SeparationSettings{}.maxTurnPerSample);
+  Patch p;
+  const Vec3 crossed[3] = {{0.1, 0.02, -0.02}, {0.12, 0.02, 0.02}, {0.08, 0.02, 0.02}};
+  const Vec3 spared[3] = {{-0.1, 0.02, -0.02}, {-0.12, 0.02, 0.02}, {-0.08, 0.02, 0.02}};
+  Index c[3];
+  Index s[3];
+  for (int k = 0; k < 3; ++k) {
+    c[k] = p.node(crossed[k], crossed[k]);
+    s[k] = p.node(spared[k], spared[k]);
+  }
+  p.patch.faces.push_back({c[0], c[1], c[2]});
+  p.patch.faces.push_back({s[0], s[1], s[2]});
+  const SeparationCounts counts = carryCrossedFaces(piece, motion, {}, p.patch);
+  EXPECT_EQ(counts.nodesMoved, 3u);
+  EXPECT_EQ(counts.facesPierced, 0u);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(length(p.patch.positions[c[k]] - end.apply(crossed[k])), 0, 1e-12) << "node " << k;
+    EXPECT_LT(p.patch.positions[c[k]].x, -0.01) << "node " << k;
+    EXPECT_EQ(p.patch.moved[c[k]], 1);
+    EXPECT_EQ(p.patch.positions[s[k]], spared[k]) << "node " << k;
+    EXPECT_EQ(p.patch.moved[s[k]], 0);
   }
 }
 

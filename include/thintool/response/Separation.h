@@ -133,6 +133,9 @@ struct SeparationCounts {
   Index facesMoved = 0;    ///< face moves
   Index nodesInside = 0;   ///< left inside the piece by more than half the clearance (expected 0)
   Index facesPierced = 0;  ///< left meeting the piece by more than half the clearance (expected 0)
+  /// Nodes and faces, in the first round, that the chord reading takes through a turning piece and
+  /// the arc reading spares: where the glue may have to choose between the two.
+  Index arcSpared = 0;
   int rounds = 0;
 
   void accumulate(const SeparationCounts& o) {
@@ -140,6 +143,7 @@ struct SeparationCounts {
     facesMoved += o.facesMoved;
     nodesInside += o.nodesInside;
     facesPierced += o.facesPierced;
+    arcSpared += o.arcSpared;
     rounds = rounds > o.rounds ? rounds : o.rounds;
   }
 };
@@ -151,6 +155,11 @@ struct SeparationCounts {
 class PieceMotion {
  public:
   PieceMotion(const Pose& bodyStart, const Pose& bodyEnd, Real maxTurnPerSample, const Pose& inBody = Pose{});
+  /// The same motion read along the chord alone: one sample, so that a node or face that the
+  /// straight path in the piece's frame takes through goes back, whatever the arc says. For a
+  /// piece that ended inside a closed body it was outside of at the start, the arc reading is the
+  /// wrong one.
+  PieceMotion alongChord() const;
   /// The piece's pose at fraction t of the step.
   Pose at(Real t) const;
   int samples() const { return m_samples; }
@@ -185,6 +194,19 @@ SeparationCounts separateFromPiece(const ToolModel& piece, const PieceMotion& mo
 /// start. A group that touches a face with a pinned node stays, since that face cannot come along
 /// and another piece may meet it. Writes positions and moved; returns what it did and what is left.
 SeparationCounts carryMeetingFaces(const ToolModel& piece, const PieceMotion& motion,
+                                   const SeparationSettings& settings, SeparationPatch& patch);
+
+/// The repair for a piece that ended the step inside a closed soft body it was outside of at the
+/// start, which the glue finds by the winding number of the piece's centre, when reading the paths
+/// along the chord did not keep it out: a path that neither reading takes through the piece let it
+/// in (a needle turning half a turn a step meets a face on its arc and ends beyond it, the face
+/// beyond the same end of the needle in its frame at both ends of the step). The movable nodes of
+/// every face that lost its side along the arc (along the chord without a turn), and of every face
+/// that meets the piece, are carried with the piece to where they stood in its frame at the start,
+/// as the last resort carries faces, with the nodes of the faces that would then meet it; applied
+/// when no more faces then meet the piece than before. Writes positions and moved; returns what it
+/// did and what is left.
+SeparationCounts carryCrossedFaces(const ToolModel& piece, const PieceMotion& motion,
                                    const SeparationSettings& settings, SeparationPatch& patch);
 
 /// Whether triangle (a, b, c) and the piece, all in the piece's frame, overlap by more than
