@@ -121,6 +121,52 @@ const btSoftBody::Node* movedNode(const btSoftBody& softBody, const detail::Pair
   return node.m_im > 0 ? &node : nullptr;
 }
 
+// Whether every edge of the body's faces is shared by exactly two faces. Run when the topology is
+// new to the solver or has changed, never in a step that only moves nodes.
+bool surfaceIsClosed(const btSoftBody& softBody) {
+  const int faceCount = softBody.m_faces.size();
+  if (faceCount == 0) return false;
+  const btSoftBody::Node* first = &softBody.m_nodes[0];
+  std::vector<std::pair<Index, Index>> edges;
+  edges.reserve(static_cast<std::size_t>(faceCount) * 3);
+  for (int f = 0; f < faceCount; ++f) {
+    const btSoftBody::Face& face = softBody.m_faces[f];
+    for (int k = 0; k < 3; ++k) {
+      const auto a = static_cast<Index>(face.m_n[k] - first);
+      const auto b = static_cast<Index>(face.m_n[(k + 1) % 3] - first);
+      edges.emplace_back(std::min(a, b), std::max(a, b));
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  for (std::size_t i = 0; i < edges.size(); i += 2) {
+    const bool pair = i + 1 < edges.size() && edges[i] == edges[i + 1];
+    if (!pair || (i + 2 < edges.size() && edges[i + 2] == edges[i])) return false;
+  }
+  return true;
+}
+
+// The generalised winding number of point p in the body's surface, each node where positionOf puts
+// it: the faces' signed solid angles over 4π (Jacobson, Kavan and Sorkine-Hornung, "Robust
+// inside-outside segmentation using generalized winding numbers", 2013; a triangle's solid angle
+// after Van Oosterom and Strackee, 1983). Near ±1 inside a closed surface, near 0 outside.
+template <typename PositionOf>
+Real windingNumber(const btSoftBody& softBody, const Vec3& p, const PositionOf& positionOf) {
+  const btSoftBody::Node* first = softBody.m_nodes.size() > 0 ? &softBody.m_nodes[0] : nullptr;
+  Real total = 0;
+  for (int f = 0; f < softBody.m_faces.size(); ++f) {
+    const btSoftBody::Face& face = softBody.m_faces[f];
+    const Vec3 a = positionOf(static_cast<Index>(face.m_n[0] - first)) - p;
+    const Vec3 b = positionOf(static_cast<Index>(face.m_n[1] - first)) - p;
+    const Vec3 c = positionOf(static_cast<Index>(face.m_n[2] - first)) - p;
+    const Real la = length(a);
+    const Real lb = length(b);
+    const Real lc = length(c);
+    const Real denominator = la * lb * lc + dot(a, b) * lc + dot(b, c) * la + dot(c, a) * lb;
+    total += 2 * std::atan2(dot(a, cross(b, c)), denominator);
+  }
+  return total / (4 * kPi);
+}
+
 }  // namespace
 
 SoftBodySolver::SoftBodySolver(CollisionConfiguration& configuration) : m_configuration(configuration) {}
@@ -615,6 +661,7 @@ SoftBodySolver::SoftBodyCache& SoftBodySolver::cacheOf(const btSoftBody& softBod
       }
     }
     for (Index n = 0; n < nodeCount; ++n) cache.begin[n + 1] += cache.begin[n];
+    cache.closed = surfaceIsClosed(softBody);
     cache.faces.resize(cache.begin[nodeCount]);
     std::vector<Index> filled(cache.begin.begin(), cache.begin.end() - 1);
     for (Index f = 0; f < faceCount; ++f) {
@@ -715,6 +762,97 @@ bool SoftBodySolver::anotherPieceNear(const Tool& tool, Index p, const PieceMoti
   return false;
 }
 
+Index SoftBodySolver::patchVertexOf(const btSoftBody& softBody, Index node) {
+  Index& vertex = m_vertexOfNode[node];
+  if (vertex == kInvalidIndex) {
+    const btSoftBody::Node& soft = softBody.m_nodes[static_cast<int>(node)];
+    vertex = m_patch.addVertex(node, toVec3(soft.m_q), toVec3(soft.m_x), Real(soft.m_im));
+  }
+  return vertex;
+}
+
+void SoftBodySolver::addPatchFace(const btSoftBody& softBody, Index f) {
+  if (m_faceInPatch[f] != 0) return;
+  m_faceInPatch[f] = 1;
+  m_patchFaces.push_back(f);
+  const btSoftBody::Face& face = softBody.m_faces[static_cast<int>(f)];
+  const btSoftBody::Node* first = &softBody.m_nodes[0];
+  m_patch.faces.push_back({patchVertexOf(softBody, static_cast<Index>(face.m_n[0] - first)),
+                           patchVertexOf(softBody, static_cast<Index>(face.m_n[1] - first)),
+                           patchVertexOf(softBody, static_cast<Index>(face.m_n[2] - first))});
+}
+
+// A move can carry a node's other faces into the tool, faces the gather had no reason to take:
+// those of every moved node join the patch, and the stage runs again, until none is missing.
+SeparationCounts SoftBodySolver::separateGrowingPatch(Tool& tool, const ToolModel& piece, const PieceMotion& motion,
+                                                     const btSoftBody& softBody, const SoftBodyCache& cache,
+                                                     bool lastResort, bool alone) {
+  SeparationCounts counts;
+  for (int extension = 0;; ++extension) {
+    const SeparationSettings& settings = tool.m_options.separation;
+    const SeparationCounts run = lastResort ? carryMeetingFaces(piece, motion, settings, m_patch)
+                                            : separateFromPiece(piece, motion, settings, m_patch, alone);
+    counts.nodesMoved += run.nodesMoved;
+    counts.facesMoved += run.facesMoved;
+    counts.nodesInside = run.nodesInside;
+    counts.facesPierced = run.facesPierced;
+    counts.rounds = std::max(counts.rounds, run.rounds);
+    counts.arcSpared = std::max(counts.arcSpared, run.arcSpared);
+    if (extension == kMostExtensions) break;
+    const std::size_t facesBefore = m_patchFaces.size();
+    const Index vertices = m_patch.vertexCount();
+    for (Index v = 0; v < vertices; ++v) {
+      if (m_patch.moved[v] == 0) continue;
+      const Index node = m_patch.nodeIds[v];
+      for (Index k = cache.begin[node]; k < cache.begin[node + 1]; ++k) {
+        if (m_faceInPatch[cache.faces[k]] == 2) m_faceInPatch[cache.faces[k]] = 0;  // looked at, away: take it now
+        addPatchFace(softBody, cache.faces[k]);
+      }
+    }
+    if (m_patchFaces.size() == facesBefore) break;
+  }
+  return counts;
+}
+
+// Under a large turn the chord and the arc disagree on some features, and the stage moves them
+// only when both readings agree (Separation.h). A piece that was outside a closed body at the
+// start and whose centre ends inside it shows that a path was read wrong. When the arc spared
+// features, they were the way in: the stage runs again from the solver's positions with the chord
+// alone. When neither reading found the way in, or the chord did not close it, the faces crossed on
+// the arc are carried with the piece from where they stood in its frame at the start
+// (carryCrossedFaces). A piece inside at the start (a body folded round it) is left to the stage.
+// The winding number visits every face of the body, and only for a turning piece near a closed
+// body.
+void SoftBodySolver::keepOutsideClosedBody(Tool& tool, const ToolModel& piece, const PieceMotion& motion,
+                                           const btSoftBody& softBody, const SoftBodyCache& cache, bool alone,
+                                           SeparationCounts& counts) {
+  const Vec3 centre = piece.bounds.center();
+  const auto endsInside = [&] {
+    const auto endOf = [&](Index id) {
+      const Index vertex = m_vertexOfNode[id];
+      return vertex != kInvalidIndex ? m_patch.positions[vertex] : toVec3(softBody.m_nodes[static_cast<int>(id)].m_x);
+    };
+    return std::abs(windingNumber(softBody, motion.end().apply(centre), endOf)) > Real(0.5);
+  };
+  const auto startOf = [&](Index id) { return toVec3(softBody.m_nodes[static_cast<int>(id)].m_q); };
+  if (!endsInside() || std::abs(windingNumber(softBody, motion.start().apply(centre), startOf)) > Real(0.5)) return;
+  if (counts.arcSpared > 0) {
+    for (Index v = 0; v < m_patch.vertexCount(); ++v) {
+      m_patch.positions[v] = m_patch.solvedPositions[v];
+      m_patch.moved[v] = 0;
+    }
+    const SeparationCounts bothReadings = counts;
+    counts = separateGrowingPatch(tool, piece, motion.alongChord(), softBody, cache, false, alone);
+    counts.nodesMoved += bothReadings.nodesMoved;
+    counts.facesMoved += bothReadings.facesMoved;
+    if (!endsInside()) return;
+  }
+  const SeparationCounts carried = carryCrossedFaces(piece, motion, tool.m_options.separation, m_patch);
+  counts.nodesMoved += carried.nodesMoved;
+  counts.nodesInside = carried.nodesInside;
+  counts.facesPierced = carried.facesPierced;
+}
+
 SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piece, const PieceMotion& motion,
                                                btSoftBody& softBody, bool lastResort, bool alone) {
   const Real clearance = tool.m_options.separation.clearance;
@@ -736,15 +874,6 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
     if (dynamicTool != nullptr) stopAtPinnedNodes(*dynamicTool, piece, motion.end(), inverseStep, cache, softBody);
     return {};
   }
-  const btSoftBody::Node* first = nodeCount > 0 ? &softBody.m_nodes[0] : nullptr;
-  const auto vertexOf = [&](const btSoftBody::Node& node) {
-    const auto id = static_cast<Index>(&node - first);
-    Index& vertex = m_vertexOfNode[id];
-    if (vertex == kInvalidIndex) {
-      vertex = m_patch.addVertex(id, toVec3(node.m_q), toVec3(node.m_x), Real(node.m_im));
-    }
-    return vertex;
-  };
   const auto meets = [](const Aabb& box, const btVector3& a, const btVector3& b) {
     for (int axis = 0; axis < 3; ++axis) {
       if (Real(btMax(a[axis], b[axis])) < box.min[axis] || Real(btMin(a[axis], b[axis])) > box.max[axis]) return false;
@@ -755,16 +884,9 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
     const btSoftBody::Node& node = softBody.m_nodes[i];
     if (!meets(grown, node.m_q, node.m_x)) continue;
     m_nearNodes.push_back(static_cast<Index>(i));
-    if (meets(swept, node.m_q, node.m_x)) vertexOf(node);
+    if (meets(swept, node.m_q, node.m_x)) patchVertexOf(softBody, static_cast<Index>(i));
   }
   m_patchFaces.clear();
-  const auto addFace = [&](Index f) {
-    if (m_faceInPatch[f] != 0) return;
-    m_faceInPatch[f] = 1;
-    m_patchFaces.push_back(f);
-    const btSoftBody::Face& face = softBody.m_faces[static_cast<int>(f)];
-    m_patch.faces.push_back({vertexOf(*face.m_n[0]), vertexOf(*face.m_n[1]), vertexOf(*face.m_n[2])});
-  };
   // Faces looked at and found away are marked 2 for the rest of the gather, so each is boxed once.
   for (Index node : m_nearNodes) {
     for (Index k = cache.begin[node]; k < cache.begin[node + 1]; ++k) {
@@ -777,7 +899,7 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
         box.include(toVec3(n->m_q));
       }
       if (swept.overlaps(box)) {
-        addFace(f);
+        addPatchFace(softBody, f);
       } else {
         m_faceInPatch[f] = 2;
         m_patchFaces.push_back(f);
@@ -791,30 +913,9 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
   }
   ++m_piecesNear;
 
-  // A move can carry a node's other faces into the tool, faces the gather had no reason to take:
-  // those of every moved node join the patch, and the stage runs again, until none is missing.
-  SeparationCounts counts;
-  for (int extension = 0;; ++extension) {
-    const SeparationSettings& settings = tool.m_options.separation;
-    const SeparationCounts run = lastResort ? carryMeetingFaces(piece, motion, settings, m_patch)
-                                            : separateFromPiece(piece, motion, settings, m_patch, alone);
-    counts.nodesMoved += run.nodesMoved;
-    counts.facesMoved += run.facesMoved;
-    counts.nodesInside = run.nodesInside;
-    counts.facesPierced = run.facesPierced;
-    counts.rounds = std::max(counts.rounds, run.rounds);
-    if (extension == kMostExtensions) break;
-    const std::size_t facesBefore = m_patchFaces.size();
-    const Index vertices = m_patch.vertexCount();
-    for (Index v = 0; v < vertices; ++v) {
-      if (m_patch.moved[v] == 0) continue;
-      const Index node = m_patch.nodeIds[v];
-      for (Index k = cache.begin[node]; k < cache.begin[node + 1]; ++k) {
-        if (m_faceInPatch[cache.faces[k]] == 2) m_faceInPatch[cache.faces[k]] = 0;  // looked at, away: take it now
-        addFace(cache.faces[k]);
-      }
-    }
-    if (m_patchFaces.size() == facesBefore) break;
+  SeparationCounts counts = separateGrowingPatch(tool, piece, motion, softBody, cache, lastResort, alone);
+  if (!lastResort && cache.closed && motion.samples() > 1) {
+    keepOutsideClosedBody(tool, piece, motion, softBody, cache, alone, counts);
   }
   for (Index f : m_patchFaces) m_faceInPatch[f] = 0;
   THINTOOL_ASSERT(m_patch.faces.size() <= m_patchFaces.size());

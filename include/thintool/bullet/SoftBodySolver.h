@@ -94,6 +94,9 @@ class SoftBodySolver : public btDefaultSoftBodySolver {
     const void* faceArray = nullptr;
     std::vector<Index> begin;
     std::vector<Index> faces;
+    // Every edge of the faces is shared by exactly two of them: the surface bounds a volume, and
+    // whether a tool piece lies inside it has an answer (the winding number).
+    bool closed = false;
     Real faceReach = 0;
     Real measuredReach = -1;  // at the last exact measure; negative: never measured
     int stepSeen = -1;
@@ -110,6 +113,18 @@ class SoftBodySolver : public btDefaultSoftBodySolver {
   };
   SoftBodyCache& cacheOf(const btSoftBody& softBody);
   SoftBodyCache* findCache(const btSoftBody& softBody);  // nullptr: none yet
+  // The stage on the gathered patch, run again with the faces of the nodes it moved until none is
+  // missing.
+  SeparationCounts separateGrowingPatch(Tool& tool, const ToolModel& piece, const PieceMotion& motion,
+                                        const btSoftBody& softBody, const SoftBodyCache& cache, bool lastResort,
+                                        bool alone);
+  // A turning piece whose centre ends the step inside a closed body it was outside of at the start
+  // is put back outside (see the definition).
+  void keepOutsideClosedBody(Tool& tool, const ToolModel& piece, const PieceMotion& motion, const btSoftBody& softBody,
+                             const SoftBodyCache& cache, bool alone, SeparationCounts& counts);
+  // The patch's vertex of a soft node, added with the node when absent; a soft face, added once.
+  Index patchVertexOf(const btSoftBody& softBody, Index node);
+  void addPatchFace(const btSoftBody& softBody, Index f);
   // Once a step: the face reach, and the box of the body's nodes.
   void surveyNodes(SoftBodyCache& cache, const btSoftBody& softBody);
   // The soft body's pinned nodes stop the dynamic tool that carries the piece short of them.
