@@ -21,7 +21,9 @@
 ///   the piece's frame and straight in the world against the arc, take it through (either alone
 ///   is wrong for some node: the first for one the turning piece never reached, the second for
 ///   one that rode on its face). The nearest face would send a node that crossed more than half
-///   the piece's thickness out of the far side.
+///   the piece's thickness out of the far side. Where both readings are wrong together, a piece
+///   that ends inside a closed body it was outside of, the glue reads the motion along the chord
+///   alone (PieceMotion::alongChord) or carries the faces crossed on the arc (carryCrossedFaces).
 /// - A face must keep a side it had at the start of the step: some separating axis (the piece's
 ///   face normals, the triangle's normal at either end, the cross products of their edges)
 ///   separates it from the piece on the same side at both ends; under a turn, a face that ends
