@@ -81,23 +81,31 @@ TEST(Separation, ATurnSweepsAlongItsArcNotItsChord) {
   EXPECT_LT(p.patch.positions[swept].x, -0.01);
 }
 
-TEST(Separation, AFaceBesideATurningPlateThatNeverReachedItStays) {
-  const ToolModel piece = plate();
-  // The plate turns 120° about y in one step: its corners sweep the disc of radius 0.283 m. A small
-  // upright face 0.35 m out, at the plate's level, stays where it is. In the plate's frame it goes
-  // a third of the way round: on the chord no axis separates it on one side at both ends.
+// A small upright face 0.35 m out from the plate's centre, at its level, that stays still while the
+// plate turns 120° about y in one step (its corners sweep the disc of radius 0.283 m). In the
+// plate's frame the face goes a third of the way round: on the chord no axis separates it on one
+// side at both ends.
+constexpr Vec3 kStillFace[3] = {{0.35, -0.1, -0.01}, {0.35, -0.1, 0.01}, {0.35, 0.1, 0}};
+Pose thirdOfATurn() {
   Pose end;
   end.rotation = rotationAboutAxis({0, 1, 0}, 2 * kPi / 3);
-  const PieceMotion motion(Pose{}, end, SeparationSettings{}.maxTurnPerSample);
-  Patch p;
-  const Vec3 corners[3] = {{0.35, -0.1, -0.01}, {0.35, -0.1, 0.01}, {0.35, 0.1, 0}};
-  Index v[3];
-  for (int k = 0; k < 3; ++k) v[k] = p.node(corners[k], corners[k]);
+  return end;
+}
+void addStillFace(Patch& p, Index (&v)[3]) {
+  for (int k = 0; k < 3; ++k) v[k] = p.node(kStillFace[k], kStillFace[k]);
   p.patch.faces.push_back({v[0], v[1], v[2]});
+}
+
+TEST(Separation, AFaceBesideATurningPlateThatNeverReachedItStays) {
+  const ToolModel piece = plate();
+  const PieceMotion motion(Pose{}, thirdOfATurn(), SeparationSettings{}.maxTurnPerSample);
+  Patch p;
+  Index v[3];
+  addStillFace(p, v);
   const SeparationCounts counts = separateFromPiece(piece, motion, {}, p.patch);
   EXPECT_EQ(counts.facesMoved, 0u);
   EXPECT_EQ(counts.arcSpared, 1u);
-  for (int k = 0; k < 3; ++k) EXPECT_EQ(p.patch.positions[v[k]], corners[k]) << "node " << k;
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(p.patch.positions[v[k]], kStillFace[k]) << "node " << k;
 }
 
 TEST(Separation, AlongTheChordAloneAFaceTheArcSparedGoesBackToItsSide) {
@@ -105,16 +113,13 @@ TEST(Separation, AlongTheChordAloneAFaceTheArcSparedGoesBackToItsSide) {
   // The face of the test above: the arc spares it, the chord takes it a third of the way round
   // the plate. Read along the chord alone, the stage puts it back on a side it had at the start,
   // seen from the plate, as the glue asks when the plate ended inside a closed body.
-  Pose end;
-  end.rotation = rotationAboutAxis({0, 1, 0}, 2 * kPi / 3);
+  const Pose end = thirdOfATurn();
   const PieceMotion motion = PieceMotion(Pose{}, end, SeparationSettings{}.maxTurnPerSample).alongChord();
   EXPECT_EQ(motion.samples(), 1);
   EXPECT_NEAR(motion.turn(), 2 * kPi / 3, 1e-12);
   Patch p;
-  const Vec3 corners[3] = {{0.35, -0.1, -0.01}, {0.35, -0.1, 0.01}, {0.35, 0.1, 0}};
   Index v[3];
-  for (int k = 0; k < 3; ++k) v[k] = p.node(corners[k], corners[k]);
-  p.patch.faces.push_back({v[0], v[1], v[2]});
+  addStillFace(p, v);
   const SeparationCounts counts = separateFromPiece(piece, motion, {}, p.patch);
   EXPECT_GE(counts.facesMoved, 1u);
   EXPECT_EQ(counts.arcSpared, 0u);
@@ -123,7 +128,7 @@ TEST(Separation, AlongTheChordAloneAFaceTheArcSparedGoesBackToItsSide) {
   EXPECT_FALSE(triangleMeetsPiece(piece, local[0], local[1], local[2], 0));
   // At the start the face lay beyond the plate's +x rim; left where it is, it would lie on the -x
   // side, seen from the turned plate. Read along the chord it goes back to the +x side.
-  EXPECT_LT(end.applyInverse(corners[0]).x, 0);
+  EXPECT_LT(end.applyInverse(kStillFace[0]).x, 0);
   EXPECT_GT((local[0].x + local[1].x + local[2].x) / 3, 0.15);
 }
 
