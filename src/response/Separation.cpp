@@ -701,6 +701,24 @@ Index carryFacesWithPiece(const ToolModel& piece, const PieceMotion& motion, Rea
 
 const auto noOthers = [](std::size_t) { return false; };
 
+// carryFacesWithPiece alone, on a patch the rounds have not seen, with what it leaves counted.
+template <typename JoinsFirst>
+SeparationCounts carryAndCount(const ToolModel& piece, const PieceMotion& motion, const SeparationSettings& settings,
+                               bool sparePinnedFaces, bool noMoreMeeting, const JoinsFirst& joinsFirst,
+                               SeparationPatch& patch) {
+  SeparationCounts counts;
+  const Index vertexCount = patch.vertexCount();
+  THINTOOL_ASSERT(patch.consistent());
+  if (vertexCount == 0) return counts;
+  const Real tolerance = settings.clearance / 2;
+  patch.movedInRound.assign(vertexCount, -1);
+  counts.nodesMoved =
+      carryFacesWithPiece(piece, motion, tolerance, sparePinnedFaces, noMoreMeeting, joinsFirst, patch);
+  const auto nothingKnown = [](auto) { return false; };
+  countWhatIsLeft(piece, motion.end(), patch, tolerance, nothingKnown, nothingKnown, counts);
+  return counts;
+}
+
 }  // namespace
 
 PieceMotion::PieceMotion(const Pose& bodyStart, const Pose& bodyEnd, Real maxTurnPerSample, const Pose& inBody)
@@ -833,25 +851,11 @@ SeparationCounts separateFromPiece(const ToolModel& piece, const PieceMotion& mo
 
 SeparationCounts carryMeetingFaces(const ToolModel& piece, const PieceMotion& motion,
                                    const SeparationSettings& settings, SeparationPatch& patch) {
-  SeparationCounts counts;
-  const Index vertexCount = patch.vertexCount();
-  THINTOOL_ASSERT(patch.consistent());
-  if (vertexCount == 0) return counts;
-  const Real tolerance = settings.clearance / 2;
-  patch.movedInRound.assign(vertexCount, -1);
-  counts.nodesMoved = carryFacesWithPiece(piece, motion, tolerance, true, false, noOthers, patch);
-  const auto nothingKnown = [](auto) { return false; };
-  countWhatIsLeft(piece, motion.end(), patch, tolerance, nothingKnown, nothingKnown, counts);
-  return counts;
+  return carryAndCount(piece, motion, settings, true, false, noOthers, patch);
 }
 
 SeparationCounts carryCrossedFaces(const ToolModel& piece, const PieceMotion& motion,
                                    const SeparationSettings& settings, SeparationPatch& patch) {
-  SeparationCounts counts;
-  const Index vertexCount = patch.vertexCount();
-  THINTOOL_ASSERT(patch.consistent());
-  if (vertexCount == 0) return counts;
-  const Real tolerance = settings.clearance / 2;
   Pose poses[kMostSamples + 1];
   for (int k = 0; k <= motion.samples(); ++k) poses[k] = motion.at(Real(k) / Real(motion.samples()));
   const auto crossed = [&](std::size_t f) {
@@ -865,11 +869,7 @@ SeparationCounts carryCrossedFaces(const ToolModel& piece, const PieceMotion& mo
     }
     return !TriangleAxes(piece, now, before, 0).keptItsSide();
   };
-  patch.movedInRound.assign(vertexCount, -1);
-  counts.nodesMoved = carryFacesWithPiece(piece, motion, tolerance, false, true, crossed, patch);
-  const auto nothingKnown = [](auto) { return false; };
-  countWhatIsLeft(piece, motion.end(), patch, tolerance, nothingKnown, nothingKnown, counts);
-  return counts;
+  return carryAndCount(piece, motion, settings, false, true, crossed, patch);
 }
 
 std::string validateSeparationSettings(const SeparationSettings& settings) {
