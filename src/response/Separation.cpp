@@ -512,6 +512,46 @@ int heldFaces(const ToolModel& piece, const Pose& end, const SeparationPatch& pa
   return held;
 }
 
+// Adds the face's movable nodes to the group (patch.inCluster); says whether any was new.
+bool joinGroup(SeparationPatch& patch, const std::array<Index, 3>& face) {
+  bool grew = false;
+  for (Index v : face) {
+    if (patch.inverseMasses[v] > 0 && patch.inCluster[v] == 0) {
+      patch.inCluster[v] = 1;
+      grew = true;
+    }
+  }
+  return grew;
+}
+
+// Whether moving the group by shift (piece frame) would leave one of its nodes carried through the
+// piece since the start of the step (judgeNode).
+bool groupGoesThrough(const ToolModel& piece, const PieceMotion& motion, const Pose* poses,
+                      const SeparationPatch& patch, const Vec3& shift, Real clearance) {
+  for (Index v = 0; v < patch.vertexCount(); ++v) {
+    if (patch.inCluster[v] == 0) continue;
+    Vec3 ignored;
+    const Vec3 moved = patch.positions[v] + motion.end().applyToDirection(shift);
+    if (judgeNode(piece, motion, poses, patch.startPositions[v], moved, clearance, ignored).fix) return true;
+  }
+  return false;
+}
+
+// Moves the group by shift (piece frame), each node's contact direction along `direction`; returns
+// how many nodes moved.
+Index shiftGroup(const Pose& end, const Vec3& shift, const Vec3& direction, SeparationPatch& patch) {
+  Index moved = 0;
+  for (Index v = 0; v < patch.vertexCount(); ++v) {
+    if (patch.inCluster[v] == 0) continue;
+    patch.positions[v] += end.applyToDirection(shift);
+    patch.directions[v] = end.applyToDirection(direction);
+    patch.moved[v] = 1;
+    patch.movedInRound[v] = std::max(patch.movedInRound[v], 0);
+    ++moved;
+  }
+  return moved;
+}
+
 // When the rounds run out with faces still pierced, their movable nodes move together, by one
 // translation that clears every face among them and leaves each of the nodes outside: faces that
 // want a shared node on opposite sides (the fan of faces round a node a needle runs through,
@@ -529,22 +569,12 @@ void moveStuckFacesTogether(const ToolModel& piece, const PieceMotion& motion, c
   const Pose& end = motion.end();
   const Index vertexCount = patch.vertexCount();
   patch.inCluster.assign(vertexCount, 0);
-  const auto join = [&](const std::array<Index, 3>& face) {
-    bool grew = false;
-    for (Index v : face) {
-      if (patch.inverseMasses[v] > 0 && patch.inCluster[v] == 0) {
-        patch.inCluster[v] = 1;
-        grew = true;
-      }
-    }
-    return grew;
-  };
   Vec3 back;
   for (const std::array<Index, 3>& face : patch.faces) {
     Vec3 now[3];
     shiftedFace(patch, end, face, {}, now);
     if (!TriangleAxes(piece, now, nullptr, 0).meets()) continue;
-    join(face);
+    joinGroup(patch, face);
     for (int k = 0; k < 3; ++k) back += motion.start().applyInverse(patch.startPositions[face[k]]) - now[k];
   }
   back = normalizedOrZero(back);
@@ -561,14 +591,7 @@ void moveStuckFacesTogether(const ToolModel& piece, const PieceMotion& motion, c
       const Real shift = shortestClearingShift(piece, end, patch, direction, clearance, least);
       const int held = heldFaces(piece, end, patch, direction * shift);
       if (held > bestHeld || (held == bestHeld && !(shift < bestShift))) continue;
-      bool through = false;
-      for (Index v = 0; v < vertexCount && !through; ++v) {
-        if (patch.inCluster[v] == 0) continue;
-        Vec3 ignored;
-        const Vec3 moved = patch.positions[v] + end.applyToDirection(direction * shift);
-        through = judgeNode(piece, motion, poses, patch.startPositions[v], moved, clearance, ignored).fix;
-      }
-      if (through) continue;
+      if (groupGoesThrough(piece, motion, poses, patch, direction * shift, clearance)) continue;
       bestShift = shift;
       bestDirection = direction;
       bestHeld = held;
@@ -580,18 +603,137 @@ void moveStuckFacesTogether(const ToolModel& piece, const PieceMotion& motion, c
       if (!anyInGroup(patch, face)) continue;
       Vec3 moved[3];
       shiftedFace(patch, end, face, shift, moved);
-      if (TriangleAxes(piece, moved, nullptr, 0).meets()) grew = join(face) || grew;
+      if (TriangleAxes(piece, moved, nullptr, 0).meets()) grew = joinGroup(patch, face) || grew;
     }
     if (grew) continue;
-    for (Index v = 0; v < vertexCount; ++v) {
-      if (patch.inCluster[v] == 0) continue;
-      patch.positions[v] += end.applyToDirection(shift);
-      patch.directions[v] = end.applyToDirection(bestDirection);
-      patch.moved[v] = 1;
-      patch.movedInRound[v] = std::max(patch.movedInRound[v], 0);
-    }
+    shiftGroup(end, shift, bestDirection, patch);
     return;
   }
+}
+
+// A face with a pinned node that the rounds and the last resort leave pierced lies across a rim of
+// the piece: the piece swept past the pinned node close enough that the node's neighbours, pushed
+// by its face or carried with it, ended on its other side (generated seeds 2851 and 3440: plates
+// turning 96° and 116° a step beside a sheet's pinned corner). No plane the pinned node is beyond
+// takes such a face clear (swingAboutPinnedNodes), and carrying it with the piece is what left it
+// there. Its free nodes slide instead, together, by the shortest translation along one of the
+// piece's face normals or halfway between two of them that clears every face they touch and keeps
+// each of them outside: along the piece's face and past its rim, a node stays on its side and the
+// face's edge to the pinned node passes beyond the rim. A face left meeting the piece brings its
+// free nodes into the group, as in moveStuckFacesTogether. No slide is taken that takes a node
+// through the piece since the start of the step (judgeNode), nor one longer than twice the path of
+// the piece's farthest-going corner: a node the rim swept along went no further than the rim, and
+// going back round it takes it at most as far again. Longer slides, half a metre in a step where a
+// plate ran into a sheet's pinned corner, fling the sheet (generated seeds 8052 and 9275: nodes at
+// 272 and 209 m/s). Along each direction the shortest slide is bracketed on a grid over the
+// piece's size and the first group's longest edge, then bisected: how far a face is from clearing
+// does not fall steadily with the slide. Returns how many nodes moved; none when no slide serves.
+Index slidePinnedFacesClear(const ToolModel& piece, const PieceMotion& motion, const Pose* poses, Real clearance,
+                            SeparationPatch& patch) {
+  constexpr int kMostGrowths = 32;
+  constexpr int kGridSteps = 64;
+  constexpr int kBisections = 10;
+  constexpr int kMostDirections = 64;
+  // Halfway directions for a piece of few planes (a box: its 12 edges); many planes are their own.
+  constexpr std::size_t kMostPlanesForHalfways = 8;
+  const Pose& end = motion.end();
+  const Index vertexCount = patch.vertexCount();
+  const std::vector<Plane>& planes = piece.planes;
+  patch.inCluster.assign(vertexCount, 0);
+  const auto meetsSlid = [&](const std::array<Index, 3>& face, const Vec3& slide) {
+    Vec3 moved[3];
+    shiftedFace(patch, end, face, slide, moved);
+    return TriangleAxes(piece, moved, nullptr, -clearance).meets();
+  };
+  // A pinned node in the piece keeps its faces there whatever the others do.
+  const auto pinnedOutside = [&](const std::array<Index, 3>& face) {
+    bool pinned = false;
+    for (Index v : face) {
+      if (patch.inverseMasses[v] > 0) continue;
+      pinned = true;
+      if (outsideDistance(planes, end.applyInverse(patch.positions[v])) < clearance / 2) return false;
+    }
+    return pinned;
+  };
+  bool any = false;
+  for (const std::array<Index, 3>& face : patch.faces) {
+    if (pinnedOutside(face) && meetsSlid(face, {})) any = joinGroup(patch, face) || any;
+  }
+  if (!any) return 0;
+  Real travel = 0;
+  for (const Vec3& corner : piece.mesh.vertices) {
+    Real path = 0;
+    for (int k = 0; k < motion.samples(); ++k) path += length(poses[k + 1].apply(corner) - poses[k].apply(corner));
+    travel = std::max(travel, path);
+  }
+  if (!(travel > 0)) return 0;
+
+  Vec3 directions[kMostDirections];
+  int directionCount = 0;
+  for (std::size_t i = 0; i < planes.size() && directionCount < kMostDirections; ++i) {
+    directions[directionCount++] = planes[i].normal;
+  }
+  for (std::size_t i = 0; i < planes.size() && planes.size() <= kMostPlanesForHalfways; ++i) {
+    for (std::size_t j = i + 1; j < planes.size() && directionCount < kMostDirections; ++j) {
+      if (dot(planes[i].normal, planes[j].normal) < Real(-0.5)) continue;
+      directions[directionCount++] = normalizedOrZero(planes[i].normal + planes[j].normal);
+    }
+  }
+  // Faces whose free nodes are all in the group: where they end is known.
+  const auto settled = [&](const std::array<Index, 3>& face) {
+    for (Index v : face) {
+      if (patch.inverseMasses[v] > 0 && patch.inCluster[v] == 0) return false;
+    }
+    return true;
+  };
+  const auto clears = [&](const Vec3& slide) {
+    for (const std::array<Index, 3>& face : patch.faces) {
+      if (anyInGroup(patch, face) && settled(face) && meetsSlid(face, slide)) return false;
+    }
+    for (Index v = 0; v < vertexCount; ++v) {
+      if (patch.inCluster[v] == 0) continue;
+      if (outsideDistance(planes, end.applyInverse(patch.positions[v]) + slide) < clearance) return false;
+    }
+    return true;
+  };
+  Real longestEdge = 0;
+  for (const std::array<Index, 3>& face : patch.faces) {
+    if (!anyInGroup(patch, face)) continue;
+    for (int k = 0; k < 3; ++k) {
+      longestEdge = std::max(longestEdge, length(patch.positions[face[k]] - patch.positions[face[(k + 1) % 3]]));
+    }
+  }
+  const Real reach = length(piece.bounds.max - piece.bounds.min) + longestEdge;
+  for (int growth = 0; growth < kMostGrowths; ++growth) {
+    Real best = std::numeric_limits<Real>::max();
+    Vec3 bestDirection;
+    for (int d = 0; d < directionCount; ++d) {
+      const Vec3& direction = directions[d];
+      int step = 1;
+      while (step <= kGridSteps && !clears(direction * (reach * Real(step) / kGridSteps))) ++step;
+      if (step > kGridSteps) continue;
+      Real low = reach * Real(step - 1) / kGridSteps;
+      Real high = reach * Real(step) / kGridSteps;
+      if (!(low < best)) continue;
+      for (int i = 0; i < kBisections; ++i) {
+        const Real middle = (low + high) / 2;
+        (clears(direction * middle) ? high : low) = middle;
+      }
+      if (!(high < best) || high > 2 * travel) continue;
+      if (groupGoesThrough(piece, motion, poses, patch, direction * high, clearance)) continue;
+      best = high;
+      bestDirection = direction;
+    }
+    if (best == std::numeric_limits<Real>::max()) return 0;
+    const Vec3 slide = bestDirection * best;
+    bool grew = false;
+    for (const std::array<Index, 3>& face : patch.faces) {
+      if (anyInGroup(patch, face) && !settled(face) && meetsSlid(face, slide)) grew = joinGroup(patch, face) || grew;
+    }
+    if (grew) continue;
+    return shiftGroup(end, slide, bestDirection, patch);
+  }
+  return 0;
 }
 
 // Whether the face meets the piece (grown by tolerance) at the end of the step, the group's nodes
@@ -840,6 +982,7 @@ SeparationCounts separateFromPiece(const ToolModel& piece, const PieceMotion& mo
   if (counts.rounds == std::max(1, settings.maxRounds)) {
     counts.nodesMoved += carryFacesWithPiece(piece, motion, tolerance, false, false, noOthers, patch);
   }
+  counts.nodesMoved += slidePinnedFacesClear(piece, motion, poses, clearance, patch);
   // A movable node the first round judged and left, and nothing moved since, is outside; a face
   // that met nothing in the first round, none of whose nodes moved since, still meets nothing.
   countWhatIsLeft(
@@ -851,7 +994,18 @@ SeparationCounts separateFromPiece(const ToolModel& piece, const PieceMotion& mo
 
 SeparationCounts carryMeetingFaces(const ToolModel& piece, const PieceMotion& motion,
                                    const SeparationSettings& settings, SeparationPatch& patch) {
-  return carryAndCount(piece, motion, settings, true, false, noOthers, patch);
+  SeparationCounts counts = carryAndCount(piece, motion, settings, true, false, noOthers, patch);
+  if (counts.facesPierced == 0) return counts;
+  Pose poses[kMostSamples + 1];
+  for (int k = 0; k <= motion.samples(); ++k) poses[k] = motion.at(Real(k) / Real(motion.samples()));
+  const Index slid = slidePinnedFacesClear(piece, motion, poses, settings.clearance, patch);
+  if (slid == 0) return counts;
+  counts.nodesMoved += slid;
+  counts.nodesInside = 0;
+  counts.facesPierced = 0;
+  const auto nothingKnown = [](auto) { return false; };
+  countWhatIsLeft(piece, motion.end(), patch, settings.clearance / 2, nothingKnown, nothingKnown, counts);
+  return counts;
 }
 
 SeparationCounts carryCrossedFaces(const ToolModel& piece, const PieceMotion& motion,

@@ -285,6 +285,62 @@ TEST(Separation, AFaceWrappedRoundTheRimFromAPinnedNodeUnderThePlateSwingsAboutT
   EXPECT_LT(length(x[above] - corners[1]), 0.05) << "a swing about the rim, not a fling";
 }
 
+// A sheet's corner face that the plate slid in under, 0.3 m along x in one step: pinned high above
+// the plate, its two free nodes below it, all three still. At the end the plate lies across the
+// face, inside its outline at the +z rim, and the edges up to the pinned node pass through it. No
+// plane the pinned node is beyond has a way out for the nodes below that keeps them outside the
+// underside. The rounds bring it clear beside the plate; the last resort, which carries nothing
+// tied to a pinned node, slides the nodes past the rim, as far as the plate went at most.
+const std::array<Vec3, 3> kSlidUnder{{{0.05, 0.25, -0.15}, {0.08, -0.02, 0.19}, {0.15, -0.04, 0.17}}};
+const PieceMotion kSlideAlongX(at({-0.3, 0, 0}), Pose{}, 0.1);
+
+SeparationPatch slidUnderFace() {
+  Patch p;
+  for (int k = 0; k < 3; ++k) p.node(kSlidUnder[k], kSlidUnder[k], k == 0 ? 0 : 1);
+  p.patch.faces.push_back({0, 1, 2});
+  EXPECT_TRUE(triangleMeetsPiece(plate(), kSlidUnder[0], kSlidUnder[1], kSlidUnder[2], 0)) << "it must end across";
+  return p.patch;
+}
+
+void expectSlidPastTheRim(const SeparationPatch& patch, const SeparationCounts& counts) {
+  const std::vector<Vec3>& x = patch.positions;
+  EXPECT_EQ(counts.facesPierced, 0u);
+  EXPECT_FALSE(triangleMeetsPiece(plate(), x[0], x[1], x[2], 0));
+  EXPECT_EQ(x[0], kSlidUnder[0]);
+  for (int k : {1, 2}) {
+    // Its path in the plate's frame passes under or beside the plate, never through it.
+    const Vec3 from = kSlideAlongX.start().applyInverse(kSlidUnder[k]);
+    const Vec3 to = kSlideAlongX.end().applyInverse(x[k]);
+    EXPECT_FALSE(triangleMeetsPiece(plate(), from, to, to, 0)) << "node " << k;
+    EXPECT_LT(to.y, 0.01) << "node " << k << " went over to the pinned node's side";
+    EXPECT_LE(length(x[k] - kSlidUnder[k]), 0.6) << "node " << k;
+  }
+}
+
+TEST(Separation, AFaceThePlateSlidUnderFromAPinnedNodeAboveComesClearWithoutGoingThroughIt) {
+  SeparationPatch patch = slidUnderFace();
+  SeparationSettings oneRound;
+  oneRound.maxRounds = 1;
+  const SeparationCounts counts = separateFromPiece(plate(), kSlideAlongX, oneRound, patch);
+  expectSlidPastTheRim(patch, counts);
+}
+
+TEST(Separation, TheLastResortSlidesAFaceWithAPinnedNodePastTheRim) {
+  SeparationPatch patch = slidUnderFace();
+  const SeparationCounts counts = carryMeetingFaces(plate(), kSlideAlongX, {}, patch);
+  EXPECT_EQ(counts.nodesMoved, 2u);
+  expectSlidPastTheRim(patch, counts);
+}
+
+TEST(Separation, NoFaceSlidesPastTheRimOfAStillPiece) {
+  // The same face with the plate still: nothing swept the nodes, and nothing may fling them.
+  SeparationPatch patch = slidUnderFace();
+  const SeparationCounts counts = carryMeetingFaces(plate(), PieceMotion(Pose{}, Pose{}, 0.1), {}, patch);
+  EXPECT_EQ(counts.nodesMoved, 0u);
+  EXPECT_EQ(counts.facesPierced, 1u);
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(patch.positions[k], kSlidUnder[k]) << "node " << k;
+}
+
 TEST(Separation, FacesThatWantASharedNodeOnOppositeSidesMoveTogether) {
   // Two faces in the needle's plane, one either side of it, sharing the node in the needle: each
   // clears by going its own way, taking the node along, and one round leaves one of them pierced.
@@ -433,10 +489,10 @@ TEST(Separation, TheLastResortMovesNothingWhereAPinnedNodeKeepsTheFaceInThePiece
   for (int k = 0; k < 3; ++k) EXPECT_EQ(p.patch.positions[v[k]], end[k]) << "node " << k;
 }
 
-TEST(Separation, TheLastResortLeavesAGroupThatTouchesAFaceWithAPinnedNode) {
+TEST(Separation, TheLastResortSlidesAGroupThatTouchesAFaceWithAPinnedNodeRatherThanCarryIt) {
   // The fall of the first test, with a third face joining two of the face's nodes to a node pinned
-  // beside the plate: that face cannot come along, and another piece of the tool might meet it,
-  // so nothing moves and the face in the plate is counted.
+  // beside the plate: that face cannot come along with the plate. The three free nodes slide clear
+  // together instead, back out of the top they came in by, by less than carrying them would.
   const ToolModel piece = plate();
   Patch p;
   const Vec3 start[4] = {{-0.05, 0.12, -0.05}, {0.1, 0.12, -0.05}, {0, 0.12, 0.05}, {0.5, 0.12, 0}};
@@ -446,9 +502,15 @@ TEST(Separation, TheLastResortLeavesAGroupThatTouchesAFaceWithAPinnedNode) {
   p.patch.faces.push_back({v[0], v[1], v[2]});
   p.patch.faces.push_back({v[1], v[3], v[2]});
   const SeparationCounts counts = carryMeetingFaces(piece, PieceMotion(at({0, 0.1, 0}), Pose{}, 0.1), {}, p.patch);
-  EXPECT_EQ(counts.nodesMoved, 0u);
-  EXPECT_GE(counts.facesPierced, 1u);
-  for (int k = 0; k < 4; ++k) EXPECT_EQ(p.patch.positions[v[k]], end[k]) << "node " << k;
+  EXPECT_EQ(counts.nodesMoved, 3u);
+  EXPECT_EQ(counts.facesPierced, 0u);
+  EXPECT_EQ(p.patch.positions[v[3]], end[3]);
+  const Vec3 slide = p.patch.positions[v[0]] - end[0];
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(length(p.patch.positions[v[k]] - end[k] - slide), 0, 1e-12) << "node " << k;
+    EXPECT_GT(p.patch.positions[v[k]].y, 0.01) << "node " << k;
+    EXPECT_LT(p.patch.positions[v[k]].y, 0.02) << "node " << k << " went as far as its carried place";
+  }
 }
 
 }  // namespace

@@ -45,8 +45,13 @@
 ///   piece that its pinned nodes are beyond.
 /// - Face moves and node moves alternate (Gauss–Seidel) for at most `maxRounds`, nodes last. When
 ///   the rounds run out with faces still pierced (faces that want a shared node on opposite
-///   sides), their nodes move together by the shortest translation that clears them all. What is
-///   still violated then is counted, never hidden.
+///   sides), their nodes move together by the shortest translation that clears them all.
+/// - A face with a pinned node left pierced after that lies across a rim: the piece swept past the
+///   pinned node and left its neighbours on the far side. Its free nodes slide together, along the
+///   piece's face and past the rim, by the shortest translation (along a face normal of the piece
+///   or halfway between two) that clears every face they touch, never through the piece and never
+///   further than twice the path of the piece's farthest-going corner in the step. What is still
+///   violated then is counted, never hidden.
 
 #include <thintool/tool/ToolModel.h>
 
@@ -194,7 +199,9 @@ SeparationCounts separateFromPiece(const ToolModel& piece, const PieceMotion& mo
 /// then meet it, as separateFromPiece does when its rounds run out. The pieces of one rigid body
 /// share that motion, so a node carried by one is where every other piece left it room at the
 /// start. A group that touches a face with a pinned node stays, since that face cannot come along
-/// and another piece may meet it. Writes positions and moved; returns what it did and what is left.
+/// and another piece may meet it; the free nodes of a face with a pinned node that still meets the
+/// piece then slide past its rim, as separateFromPiece's do. Writes positions and moved; returns
+/// what it did and what is left.
 SeparationCounts carryMeetingFaces(const ToolModel& piece, const PieceMotion& motion,
                                    const SeparationSettings& settings, SeparationPatch& patch);
 
