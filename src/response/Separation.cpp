@@ -660,6 +660,7 @@ Index slidePinnedFacesClear(const ToolModel& piece, const PieceMotion& motion, c
     if (pinnedOutside(face) && meetsSlid(face, {})) any = joinGroup(patch, face) || any;
   }
   if (!any) return 0;
+  // The path of the piece's farthest-going corner along its arc.
   Real travel = 0;
   for (const Vec3& corner : piece.mesh.vertices) {
     Real path = 0;
@@ -709,9 +710,13 @@ Index slidePinnedFacesClear(const ToolModel& piece, const PieceMotion& motion, c
     Vec3 bestDirection;
     for (int d = 0; d < directionCount; ++d) {
       const Vec3& direction = directions[d];
+      // A bracket that starts at twice the travel or beyond could only give a slide too long.
+      const auto inReach = [&](int step) {
+        return step <= kGridSteps && reach * Real(step - 1) / kGridSteps < 2 * travel;
+      };
       int step = 1;
-      while (step <= kGridSteps && !clears(direction * (reach * Real(step) / kGridSteps))) ++step;
-      if (step > kGridSteps) continue;
+      while (inReach(step) && !clears(direction * (reach * Real(step) / kGridSteps))) ++step;
+      if (!inReach(step)) continue;
       Real low = reach * Real(step - 1) / kGridSteps;
       Real high = reach * Real(step) / kGridSteps;
       if (!(low < best)) continue;
