@@ -334,9 +334,10 @@ bool keptItsSideAlongArc(const ToolModel& piece, const PieceMotion& motion, cons
 // 1969's next round). The planes are the piece's face planes and, through each of its edges,
 // planes turned between the edge's two faces: a face wrapped round a rim, its pinned node under
 // the piece and a free node above it, comes clear only by a plane through the rim (seed 4127).
-// Those come only with aboutEdges, in the last round, when no face plane serves, and only for a
-// piece with no other near it: turned about an edge, a face between two jaws swings out of one into
-// the other, pass after pass (seeds 3461 and 1032).
+// Those come only with aboutEdges (in the last round, or once shares of a translation would go too
+// far: sharesGoTooFar), when no face plane serves, and only for a piece with no other near it:
+// turned about an edge, a face between two jaws swings out of one into the other, pass after pass
+// (seeds 3461 and 1032).
 // The whole triangle then lies beyond the plane, within half the clearance at a pinned node: a
 // dynamic tool stopped at a pinned node ends on it, rounding a hair inside (generated seed 4352).
 // False when no plane serves: a pinned node in the piece, or a free node inside it, which the node
@@ -512,6 +513,38 @@ int heldFaces(const ToolModel& piece, const Pose& end, const SeparationPatch& pa
   return held;
 }
 
+// The length of the path the piece's farthest-going corner takes in the step, along its arc.
+Real farthestPath(const ToolModel& piece, const PieceMotion& motion, const Pose* poses) {
+  Real farthest = 0;
+  for (const Vec3& corner : piece.mesh.vertices) {
+    Real path = 0;
+    for (int k = 0; k < motion.samples(); ++k) path += length(poses[k + 1].apply(corner) - poses[k].apply(corner));
+    farthest = std::max(farthest, path);
+  }
+  return farthest;
+}
+
+// Whether moving a face with a pinned node by shares of `move` would take a free node further than
+// twice what the step can explain: the path of the piece's farthest-going corner (travel) and the
+// face's largest own move in the soft solve. A pinned corner face that a slow plate had reached,
+// moved by shares round after round, went up to 1.18 m a move while the plate went 3.4 mm, and
+// threw nodes at 71 m/s (generated seed 9082). Such a face swings about an edge of a lone piece at
+// once, where it would otherwise wait for the last round, or is left to slidePinnedFacesClear, whose
+// slide is no longer than twice the travel.
+bool sharesGoTooFar(const SeparationPatch& patch, const std::array<Index, 3>& face, const Vec3& move, Real travel) {
+  Real weights = 0;
+  Real heaviest = 0;
+  Real ownMove = 0;
+  for (Index v : face) {
+    weights += patch.inverseMasses[v];
+    heaviest = std::max(heaviest, patch.inverseMasses[v]);
+    if (!(patch.inverseMasses[v] > 0)) continue;
+    ownMove = std::max(ownMove, length(patch.solvedPositions[v] - patch.startPositions[v]));
+  }
+  const Real longestShare = weights > 0 ? length(move) * 3 * heaviest / weights : 0;
+  return longestShare > 2 * (travel + ownMove);
+}
+
 // Adds the face's movable nodes to the group (patch.inCluster); says whether any was new.
 bool joinGroup(SeparationPatch& patch, const std::array<Index, 3>& face) {
   bool grew = false;
@@ -660,13 +693,7 @@ Index slidePinnedFacesClear(const ToolModel& piece, const PieceMotion& motion, c
     if (pinnedOutside(face) && meetsSlid(face, {})) any = joinGroup(patch, face) || any;
   }
   if (!any) return 0;
-  // The path of the piece's farthest-going corner along its arc.
-  Real travel = 0;
-  for (const Vec3& corner : piece.mesh.vertices) {
-    Real path = 0;
-    for (int k = 0; k < motion.samples(); ++k) path += length(poses[k + 1].apply(corner) - poses[k].apply(corner));
-    travel = std::max(travel, path);
-  }
+  const Real travel = farthestPath(piece, motion, poses);
   if (!(travel > 0)) return 0;
 
   Vec3 directions[kMostDirections];
@@ -907,6 +934,7 @@ SeparationCounts separateFromPiece(const ToolModel& piece, const PieceMotion& mo
   Pose poses[kMostSamples + 1];
   for (int k = 0; k <= motion.samples(); ++k) poses[k] = motion.at(Real(k) / Real(motion.samples()));
   const Aabb near = piece.bounds.expanded(clearance);
+  const Real travel = farthestPath(piece, motion, poses);
 
   // Each round moves the faces, then the nodes, so that when the rounds run out the nodes have
   // had the last say: a face left pierced is counted, a node is never left carried through.
@@ -953,10 +981,13 @@ SeparationCounts separateFromPiece(const ToolModel& piece, const PieceMotion& mo
       // could go back to, and it is left alone unless it meets the piece at the end.
       if (pinned && !axes.meets()) continue;
       const bool aboutEdges = alone && round + 1 == std::max(1, settings.maxRounds);
-      if (!(pinned && swingAboutPinnedNodes(patch, face, piece, end, now, clearance, aboutEdges)) &&
-          !moveFace(patch, face, end.applyToDirection(move), motion)) {
-        continue;
+      bool swung = pinned && swingAboutPinnedNodes(patch, face, piece, end, now, clearance, aboutEdges);
+      if (!swung && pinned && sharesGoTooFar(patch, face, move, travel)) {
+        // Shares would fling the face: about an edge, if any, is the only move it has.
+        swung = alone && !aboutEdges && swingAboutPinnedNodes(patch, face, piece, end, now, clearance, true);
+        if (!swung) continue;
       }
+      if (!swung && !moveFace(patch, face, end.applyToDirection(move), motion)) continue;
       for (Index v : face) {
         if (patch.inverseMasses[v] > 0) patch.movedInRound[v] = round;
       }

@@ -332,6 +332,15 @@ TEST(Separation, TheLastResortSlidesAFaceWithAPinnedNodePastTheRim) {
   expectSlidPastTheRim(patch, counts);
 }
 
+TEST(Separation, AStillPlateNeitherFlingsNorSlidesTheFreeNodesOfAFaceWithAPinnedNode) {
+  // The same face with the plate and the nodes still: nothing in the step explains a move, and the
+  // shares of a translation that would clear it are tens of centimetres. The face stays, counted.
+  SeparationPatch patch = slidUnderFace();
+  const SeparationCounts counts = separateFromPiece(plate(), PieceMotion(Pose{}, Pose{}, 0.1), {}, patch);
+  EXPECT_EQ(counts.facesPierced, 1u);
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(patch.positions[k], kSlidUnder[k]) << "node " << k;
+}
+
 TEST(Separation, NoFaceSlidesPastTheRimOfAStillPiece) {
   // The same face with the plate still: nothing swept the nodes, and nothing may fling them.
   SeparationPatch patch = slidUnderFace();

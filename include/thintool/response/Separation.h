@@ -42,7 +42,10 @@
 ///   length puts the face there instead: as it was beside the piece then. Faces that share nodes
 ///   otherwise add their rounds' moves up, half a metre in a step on a pinned sheet.
 /// - A face with a pinned node cannot translate: its free nodes go beyond a face plane of the
-///   piece that its pinned nodes are beyond.
+///   piece that its pinned nodes are beyond. Moved by shares of a translation instead, they go no
+///   further than twice what the step explains (the path of the piece's farthest-going corner and
+///   their own move in the solve); past that the face swings about an edge of a lone piece, or
+///   waits for the slide below.
 /// - Face moves and node moves alternate (Gauss–Seidel) for at most `maxRounds`, nodes last. When
 ///   the rounds run out with faces still pierced (faces that want a shared node on opposite
 ///   sides), their nodes move together by the shortest translation that clears them all.
