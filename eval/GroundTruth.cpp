@@ -3,6 +3,7 @@
 #include "GroundTruth.h"
 
 #include <thintool/core/Error.h>
+#include <thintool/geometry/SolidAngle.h>
 
 #include <algorithm>
 #include <cmath>
@@ -205,18 +206,9 @@ bool surfaceIntersectsItself(const std::vector<Vec3>& vertices, const std::vecto
 }
 
 double windingNumber(const Vec3& p, const std::vector<Vec3>& vertices, const std::vector<Triangle>& triangles) {
-  // Each triangle's signed solid angle seen from p (Van Oosterom and Strackee 1983).
   double solidAngle = 0;
   for (const Triangle& t : triangles) {
-    const Vec3 a = vertices[t[0]] - p;
-    const Vec3 b = vertices[t[1]] - p;
-    const Vec3 c = vertices[t[2]] - p;
-    const double la = length(a);
-    const double lb = length(b);
-    const double lc = length(c);
-    const double numerator = dot(a, cross(b, c));
-    const double denominator = la * lb * lc + dot(a, b) * lc + dot(a, c) * lb + dot(b, c) * la;
-    solidAngle += 2 * std::atan2(numerator, denominator);
+    solidAngle += triangleSolidAngle(vertices[t[0]] - p, vertices[t[1]] - p, vertices[t[2]] - p);
   }
   return solidAngle / (4 * kPi);
 }

@@ -10,6 +10,7 @@
 #include <thintool/bullet/Convert.h>
 #include <thintool/bullet/Tool.h>
 #include <thintool/core/Assert.h>
+#include <thintool/geometry/SolidAngle.h>
 
 #include <BulletDynamics/Dynamics/btRigidBody.h>
 #include <BulletSoftBody/btSoftBody.h>
@@ -146,23 +147,16 @@ bool surfaceIsClosed(const btSoftBody& softBody) {
 }
 
 // The generalised winding number of point p in the body's surface, each node where positionOf puts
-// it: the faces' signed solid angles over 4π (Jacobson, Kavan and Sorkine-Hornung, "Robust
-// inside-outside segmentation using generalized winding numbers", 2013; a triangle's solid angle
-// after Van Oosterom and Strackee, 1983). Near ±1 inside a closed surface, near 0 outside.
+// it (geometry/SolidAngle.h): near ±1 inside a closed surface, near 0 outside.
 template <typename PositionOf>
 Real windingNumber(const btSoftBody& softBody, const Vec3& p, const PositionOf& positionOf) {
   const btSoftBody::Node* first = softBody.m_nodes.size() > 0 ? &softBody.m_nodes[0] : nullptr;
   Real total = 0;
   for (int f = 0; f < softBody.m_faces.size(); ++f) {
     const btSoftBody::Face& face = softBody.m_faces[f];
-    const Vec3 a = positionOf(static_cast<Index>(face.m_n[0] - first)) - p;
-    const Vec3 b = positionOf(static_cast<Index>(face.m_n[1] - first)) - p;
-    const Vec3 c = positionOf(static_cast<Index>(face.m_n[2] - first)) - p;
-    const Real la = length(a);
-    const Real lb = length(b);
-    const Real lc = length(c);
-    const Real denominator = la * lb * lc + dot(a, b) * lc + dot(b, c) * la + dot(c, a) * lb;
-    total += 2 * std::atan2(dot(a, cross(b, c)), denominator);
+    total += triangleSolidAngle(positionOf(static_cast<Index>(face.m_n[0] - first)) - p,
+                                positionOf(static_cast<Index>(face.m_n[1] - first)) - p,
+                                positionOf(static_cast<Index>(face.m_n[2] - first)) - p);
   }
   return total / (4 * kPi);
 }
