@@ -1,23 +1,31 @@
 // SPDX-License-Identifier: Zlib
 // Copyright (c) 2026 The ThinTool developers
 //
-// The JSON reader of Json.h: a recursive-descent parser (the depth is capped, so the recursion is
-// bounded) that keeps the line and column as it goes, so that every value carries where it
-// started and every error says where it happened, and JsonField's typed reads.
+// The JSON reader of Json.h on RapidJSON's SAX reader (Debian's rapidjson-dev): its iterative
+// parser checks the grammar and the UTF-8 without recursion, and the handler here builds the tree,
+// keeps where each value starts and checks what RFC 8259 leaves to the reader. RapidJSON reports
+// an error as a code and a byte offset; the message is written here as "expected ..., found ..."
+// at a line and column, in the same words as JsonField's. Then JsonField's typed reads.
 
 #include "Json.h"
 
 #include <thintool/core/Error.h>
 
+#include <rapidjson/error/en.h>
+#include <rapidjson/memorystream.h>
+#include <rapidjson/reader.h>
+
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <climits>
 #include <cmath>
-#include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <system_error>
+#include <optional>
 #include <unordered_map>
+#include <vector>
 
 namespace thintool::eval {
 
@@ -85,25 +93,6 @@ std::size_t utf8Length(std::string_view text, std::size_t pos) {
   }
   return length;
 }
-
-void appendUtf8(std::string& out, std::uint32_t code) {
-  if (code < 0x80) {
-    out += static_cast<char>(code);
-  } else if (code < 0x800) {
-    out += static_cast<char>(0xC0 | (code >> 6));
-    out += static_cast<char>(0x80 | (code & 0x3F));
-  } else if (code < 0x10000) {
-    out += static_cast<char>(0xE0 | (code >> 12));
-    out += static_cast<char>(0x80 | ((code >> 6) & 0x3F));
-    out += static_cast<char>(0x80 | (code & 0x3F));
-  } else {
-    out += static_cast<char>(0xF0 | (code >> 18));
-    out += static_cast<char>(0x80 | ((code >> 12) & 0x3F));
-    out += static_cast<char>(0x80 | ((code >> 6) & 0x3F));
-    out += static_cast<char>(0x80 | (code & 0x3F));
-  }
-}
-
 // from_chars reports a number outside a double's range the same way whether it is too large or
 // too small; a too small one (1e-400) is valid JSON and reads as 0, so tell them apart by the
 // decimal exponent of the first significant digit. number is well formed and not zero.
@@ -138,323 +127,366 @@ bool belowDoubleRange(std::string_view number) {
   return lead + exponent < 0;
 }
 
-class Parser {
- public:
-  Parser(std::string_view text, const std::string& source) : text_(text), source_(source) {}
+// What is at text[at], for "found ...". A word is shown whole (`tru`, `1e999`), unless a single
+// character is what is wrong, as in a bad escape.
+std::string describe(std::string_view text, std::size_t at, bool wholeWord) {
+  if (at >= text.size()) {
+    return "the end of the input";
+  }
+  const auto c = static_cast<unsigned char>(text[at]);
+  if (c == '\n' || c == '\r') {
+    return "the end of the line";
+  }
+  if (c < 0x20 || c == 0x7F) {
+    return "control character U+" + hex(c, 4);
+  }
+  if (c >= 0x80) {
+    const std::size_t length = utf8Length(text, at);
+    return length == 0 ? "byte 0x" + hex(c, 2) + ", not valid UTF-8 here"
+                       : "'" + std::string(text.substr(at, length)) + "'";
+  }
+  if (!wholeWord || !isWordChar(text[at])) {
+    return std::string("'") + text[at] + "'";
+  }
+  std::size_t end = at;
+  while (end < text.size() && end - at < 24 && isWordChar(text[end])) {
+    ++end;
+  }
+  const bool cut = end < text.size() && isWordChar(text[end]);
+  return "'" + std::string(text.substr(at, end - at)) + (cut ? "...'" : "'");
+}
 
-  JsonValue document() {
-    if (text_.substr(0, 3) == "\xEF\xBB\xBF") {
-      pos_ = 3;  // a byte order mark, as some editors write: not a column
+bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
+
+// Line and column of byte offsets that only grow while a document is read, so that one cursor
+// walks the text once. Columns count characters, not bytes, to match an editor's for UTF-8 text.
+class Locator {
+ public:
+  explicit Locator(std::string_view text) : text_(text) {}
+
+  Mark at(std::size_t offset) {
+    if (offset < cursor_.pos) {
+      cursor_ = {0, 1, 1};
     }
-    JsonValue root = value("expected a value", 0);
-    skipSpace();
-    if (!atEnd()) {
-      fail("expected the end of the input after the value");
+    while (cursor_.pos < offset && cursor_.pos < text_.size()) {
+      const char c = text_[cursor_.pos++];
+      if (c == '\n') {
+        ++cursor_.line;
+        cursor_.column = 1;
+      } else if ((static_cast<unsigned char>(c) & 0xC0) != 0x80) {
+        ++cursor_.column;
+      }
     }
-    return root;
+    return cursor_;
   }
 
  private:
-  Mark here() const { return {pos_, line_, column_}; }
-  bool atEnd() const { return pos_ >= text_.size(); }
-  char peek() const { return atEnd() ? '\0' : text_[pos_]; }
+  std::string_view text_;
+  Mark cursor_{0, 1, 1};
+};
 
-  // Columns count characters, not bytes, so they match an editor's for UTF-8 text.
-  void advance() {
-    const char c = text_[pos_++];
-    if (c == '\n') {
-      ++line_;
-      column_ = 1;
-    } else if ((static_cast<unsigned char>(c) & 0xC0) != 0x80) {
-      ++column_;
-    }
+// Builds the JsonValue tree from RapidJSON's events, with where each value starts, and checks what
+// RFC 8259 leaves to the reader: unique keys, a bounded depth, numbers within a double's range.
+// Between two tokens JSON has only white space, ',' and ':', so a token starts at the first other
+// byte after the previous one ends. The reader calls a scalar's or a key's handler with its token
+// read, and a bracket's before it takes the bracket. A handler that returns false stops the
+// reader, and `problem` says why.
+class TreeBuilder : public rapidjson::BaseReaderHandler<rapidjson::UTF8<>, TreeBuilder> {
+ public:
+  TreeBuilder(std::string_view text, const rapidjson::MemoryStream& stream, Locator& locator)
+      : text_(text), stream_(stream), locator_(locator) {}
+
+  bool Null() { return add(JsonValue::Kind::Null) != nullptr; }
+  bool Bool(bool value) {
+    JsonValue* added = add(JsonValue::Kind::Boolean);
+    if (added != nullptr) added->boolean = value;
+    return added != nullptr;
   }
-
-  bool consume(char c) {
-    if (atEnd() || text_[pos_] != c) {
-      return false;
+  // Numbers come as written (kParseNumbersAsStringsFlag), so that -0 keeps its sign and one too
+  // small for a double reads as 0.
+  bool RawNumber(const char* spelled, rapidjson::SizeType length, bool) {
+    const std::size_t start = tokenStart();
+    double number = 0;
+    const std::from_chars_result read = std::from_chars(spelled, spelled + length, number);
+    const std::string_view text(spelled, length);
+    if (read.ec == std::errc::result_out_of_range && belowDoubleRange(text)) {
+      number = text[0] == '-' ? -0.0 : 0.0;
+    } else if (read.ec != std::errc() || read.ptr != spelled + length || !std::isfinite(number)) {
+      return stop(start, kNumberRange, describe(text_, start, true));
     }
-    advance();
+    JsonValue* added = add(JsonValue::Kind::Number, start);
+    if (added != nullptr) added->number = number;
+    return added != nullptr;
+  }
+  bool String(const char* text, rapidjson::SizeType length, bool) {
+    const std::size_t start = tokenStart();
+    if (!validUtf8(std::string_view(text, length), start)) return false;
+    JsonValue* added = add(JsonValue::Kind::String, start);
+    if (added != nullptr) added->text.assign(text, length);
+    return added != nullptr;
+  }
+  bool StartObject() { return open(JsonValue::Kind::Object); }
+  bool Key(const char* text, rapidjson::SizeType length, bool) {
+    const std::size_t start = tokenStart();
+    std::string key(text, length);
+    if (!validUtf8(key, start)) return false;
+    const Mark mark = locator_.at(start);
+    const auto [first, isNew] = keys_.back().emplace(key, mark);
+    if (!isNew) {
+      return stop(start, "expected a key not already in this object",
+                  jsonQuoted(key) + " again (first at " + lineColumn(first->second) + ")");
+    }
+    key_ = std::move(key);
+    ended();
     return true;
   }
+  bool EndObject(rapidjson::SizeType) { return close(); }
+  bool StartArray() { return open(JsonValue::Kind::Array); }
+  bool EndArray(rapidjson::SizeType) { return close(); }
 
-  void skipSpace() {
-    while (!atEnd() && (text_[pos_] == ' ' || text_[pos_] == '\t' || text_[pos_] == '\n' || text_[pos_] == '\r')) {
-      advance();
-    }
+  JsonValue& root() { return root_; }
+  std::size_t nextTokenStart() const { return tokenStart(); }
+  const std::string& key() const { return key_; }
+  // Set when a handler stopped the reader: where, what was expected and what was found.
+  struct Problem {
+    std::size_t offset = 0;
+    std::string expected, found;
+  };
+  const std::optional<Problem>& problem() const { return problem_; }
+
+  static constexpr const char* kNumberRange = "expected a number within a double's range (magnitude up to 1.8e308)";
+  static constexpr const char* kLoneLow = "expected a high surrogate (\\uD800-\\uDBFF) before a low one";
+
+ private:
+  std::size_t tokenStart() const {
+    std::size_t at = scanFrom_;
+    while (at < text_.size() && (isSpace(text_[at]) || text_[at] == ',' || text_[at] == ':')) ++at;
+    return at;
+  }
+  void ended() { scanFrom_ = stream_.Tell(); }
+
+  bool stop(std::size_t offset, std::string expected, std::string found) {
+    problem_ = Problem{offset, std::move(expected), std::move(found)};
+    return false;
   }
 
-  // What is at text[at], for "found ...". A word is shown whole (`tru`, `1e999`), unless a single
-  // character is what is wrong, as in a bad escape.
-  std::string describe(std::size_t at, bool wholeWord) const {
-    if (at >= text_.size()) {
-      return "the end of the input";
-    }
-    const auto c = static_cast<unsigned char>(text_[at]);
-    if (c == '\n' || c == '\r') {
-      return "the end of the line";
-    }
-    if (c < 0x20 || c == 0x7F) {
-      return "control character U+" + hex(c, 4);
-    }
-    if (c >= 0x80) {
-      const std::size_t length = utf8Length(text_, at);
-      return length == 0 ? "byte 0x" + hex(c, 2) + ", not valid UTF-8 here"
-                         : "'" + std::string(text_.substr(at, length)) + "'";
-    }
-    if (!wholeWord || !isWordChar(text_[at])) {
-      return std::string("'") + text_[at] + "'";
-    }
-    std::size_t end = at;
-    while (end < text_.size() && end - at < 24 && isWordChar(text_[end])) {
-      ++end;
-    }
-    const bool cut = end < text_.size() && isWordChar(text_[end]);
-    return "'" + std::string(text_.substr(at, end - at)) + (cut ? "...'" : "'");
-  }
-
-  [[noreturn]] void failAt(const Mark& mark, const std::string& expected, const std::string& found) const {
-    throw Error(source_ + ":" + lineColumn(mark) + ": " + expected + ", found " + found);
-  }
-  [[noreturn]] void fail(const std::string& expected) const { failAt(here(), expected, describe(pos_, true)); }
-  [[noreturn]] void failChar(const std::string& expected) const {
-    failAt(here(), expected, describe(pos_, false));
-  }
-
-  // depth: how many arrays and objects enclose the value.
-  JsonValue value(const char* expected, int depth) {
-    skipSpace();
-    JsonValue result;
-    result.line = line_;
-    result.column = column_;
-    const char c = peek();
-    if (atEnd()) {
-      fail(expected);
-    } else if (c == '{') {
-      object(result, depth + 1);
-    } else if (c == '[') {
-      array(result, depth + 1);
-    } else if (c == '"') {
-      result.kind = JsonValue::Kind::String;
-      result.text = string();
-    } else if (c == '-' || isDigit(c)) {
-      number(result);
-    } else if (literal("true") || literal("false")) {
-      result.kind = JsonValue::Kind::Boolean;
-      result.boolean = c == 't';
-    } else if (!literal("null")) {
-      fail(expected);
-    }
-    return result;
-  }
-
-  bool literal(std::string_view word) {
-    const std::size_t after = pos_ + word.size();
-    if (text_.compare(pos_, word.size(), word) != 0 || (after < text_.size() && isWordChar(text_[after]))) {
-      return false;
-    }
-    while (pos_ < after) {
-      advance();
+  // RapidJSON pairs a high surrogate's \u escape with the low one that must follow, but lets a
+  // lone low one through as bytes that are not UTF-8, which the file's own bytes cannot be
+  // (kParseValidateEncodingFlag). The escape is found in the string as written, from its quote.
+  bool validUtf8(std::string_view decoded, std::size_t start) {
+    for (std::size_t i = 0; i < decoded.size();) {
+      const std::size_t length = utf8Length(decoded, i);
+      if (length == 0) {
+        const auto [at, escape] = loneSurrogate(start);
+        return stop(at, kLoneLow, escape + " alone");
+      }
+      i += length;
     }
     return true;
   }
-
-  void enter(int depth) const {
-    if (depth > kMaxDepth) {
-      failAt(here(), "expected arrays and objects nested at most " + std::to_string(kMaxDepth) + " deep",
-             "one nested deeper");
-    }
-  }
-
-  void array(JsonValue& result, int depth) {
-    enter(depth);
-    advance();
-    result.kind = JsonValue::Kind::Array;
-    skipSpace();
-    if (consume(']')) {
-      return;
-    }
-    const char* expected = "expected a value or ']'";
-    for (;;) {
-      result.items.push_back(value(expected, depth));
-      skipSpace();
-      if (consume(']')) {
-        return;
-      }
-      if (!consume(',')) {
-        fail("expected ',' or ']'");
-      }
-      expected = "expected a value after ','";
-    }
-  }
-
-  void object(JsonValue& result, int depth) {
-    enter(depth);
-    advance();
-    result.kind = JsonValue::Kind::Object;
-    std::unordered_map<std::string, Mark> seen;  // where each key was first written
-    skipSpace();
-    if (consume('}')) {
-      return;
-    }
-    const char* expected = "expected a key in double quotes or '}'";
-    for (;;) {
-      skipSpace();
-      if (peek() != '"') {
-        fail(expected);
-      }
-      const Mark keyMark = here();
-      std::string key = string();
-      const auto [first, isNew] = seen.emplace(key, keyMark);
-      if (!isNew) {
-        failAt(keyMark, "expected a key not already in this object",
-               jsonQuoted(key) + " again (first at " + lineColumn(first->second) + ")");
-      }
-      skipSpace();
-      if (!consume(':')) {
-        fail("expected ':' after the key " + jsonQuoted(key));
-      }
-      JsonValue member = value("expected a value", depth);
-      result.members.emplace_back(std::move(key), std::move(member));
-      skipSpace();
-      if (consume('}')) {
-        return;
-      }
-      if (!consume(',')) {
-        fail("expected ',' or '}'");
-      }
-      expected = "expected a key in double quotes after ','";
-    }
-  }
-
-  std::string string() {
-    const Mark open = here();
-    advance();
-    std::string out;
-    for (;;) {
-      if (atEnd() || text_[pos_] == '\n' || text_[pos_] == '\r') {
-        fail("expected '\"' to close the string begun at " + lineColumn(open));
-      }
-      const auto c = static_cast<unsigned char>(text_[pos_]);
-      if (c == '"') {
-        advance();
-        return out;
-      }
-      if (c == '\\') {
-        escape(out);
+  // Where the string opened at quote has its lone low surrogate, and the escape as \uXXXX.
+  std::pair<std::size_t, std::string> loneSurrogate(std::size_t quote) const {
+    for (std::size_t i = quote + 1; i + 6 <= text_.size() && text_[i] != '"';) {
+      if (text_[i] != '\\') {
+        ++i;
         continue;
       }
-      const std::size_t length = utf8Length(text_, pos_);
-      if (c < 0x20 || length == 0) {
-        fail("expected a character or an escape in the string");
+      if (text_[i + 1] != 'u') {
+        i += 2;
+        continue;
       }
-      out.append(text_.substr(pos_, length));
-      for (std::size_t i = 0; i < length; ++i) {
-        advance();
-      }
+      const unsigned long code = std::strtoul(std::string(text_.substr(i + 2, 4)).c_str(), nullptr, 16);
+      if (code >= 0xDC00 && code <= 0xDFFF) return {i, "\\u" + hex(static_cast<unsigned>(code), 4)};
+      i += code >= 0xD800 && code <= 0xDBFF ? 12 : 6;
     }
+    return {quote, "a \\u escape"};
   }
 
-  void escape(std::string& out) {
-    const Mark backslash = here();
-    advance();
-    const char c = peek();
-    const char* const from = "\"\\/bfnrt";
-    const char* const to = "\"\\/\b\f\n\r\t";
-    if (const char* known = atEnd() ? nullptr : std::char_traits<char>::find(from, 8, c)) {
-      out += to[known - from];
-      advance();
-      return;
-    }
-    if (c != 'u') {
-      failChar("expected an escape (\\\" \\\\ \\/ \\b \\f \\n \\r \\t \\uXXXX) after '\\'");
-    }
-    advance();
-    std::uint32_t code = hex4();
-    if (code >= 0xDC00 && code <= 0xDFFF) {
-      failAt(backslash, "expected a high surrogate (\\uD800-\\uDBFF) before a low one", "\\u" + hex(code, 4) + " alone");
-    }
-    if (code >= 0xD800 && code <= 0xDBFF) {
-      const std::string expected = "expected a low surrogate (\\uDC00-\\uDFFF) after \\u" + hex(code, 4);
-      const Mark second = here();
-      if (text_.compare(pos_, 2, "\\u") != 0) {
-        fail(expected);
+  JsonValue* add(JsonValue::Kind kind) { return add(kind, tokenStart()); }
+  JsonValue* add(JsonValue::Kind kind, std::size_t start) {
+    JsonValue* value = &root_;
+    if (!open_.empty()) {
+      JsonValue& parent = *open_.back();
+      if (parent.kind == JsonValue::Kind::Array) {
+        value = &parent.items.emplace_back();
+      } else {
+        value = &parent.members.emplace_back(std::move(key_), JsonValue{}).second;
       }
-      advance();
-      advance();
-      const std::uint32_t low = hex4();
-      if (low < 0xDC00 || low > 0xDFFF) {
-        failAt(second, expected, "\\u" + hex(low, 4));
-      }
-      code = 0x10000 + ((code - 0xD800) << 10) + (low - 0xDC00);
     }
-    appendUtf8(out, code);
+    const Mark mark = locator_.at(start);
+    value->kind = kind;
+    value->line = mark.line;
+    value->column = mark.column;
+    ended();
+    return value;
   }
 
-  std::uint32_t hex4() {
-    std::uint32_t code = 0;
-    for (int i = 0; i < 4; ++i) {
-      const char c = peek();
-      const int digit = isDigit(c) ? c - '0' : c >= 'a' && c <= 'f' ? c - 'a' + 10 : c >= 'A' && c <= 'F' ? c - 'A' + 10 : -1;
-      if (digit < 0) {
-        failChar("expected 4 hex digits after \\u");
-      }
-      code = code * 16 + static_cast<std::uint32_t>(digit);
-      advance();
+  bool open(JsonValue::Kind kind) {
+    const std::size_t start = tokenStart();
+    if (open_.size() >= static_cast<std::size_t>(kMaxDepth)) {
+      return stop(start, "expected arrays and objects nested at most " + std::to_string(kMaxDepth) + " deep",
+                  "one nested deeper");
     }
-    return code;
+    // A value's parent never gains another item while the value is open, so the pointers stay valid.
+    open_.push_back(add(kind, start));
+    if (kind == JsonValue::Kind::Object) keys_.emplace_back();
+    scanFrom_ = start + 1;
+    return true;
   }
-
-  void number(JsonValue& result) {
-    const Mark start = here();
-    consume('-');
-    if (consume('0')) {
-      if (isDigit(peek())) {
-        failAt(start, "expected a number without leading zeros", describe(start.pos, true));
-      }
-    } else if (isDigit(peek())) {
-      while (isDigit(peek())) {
-        advance();
-      }
-    } else {
-      failChar("expected a digit after '-'");
-    }
-    if (consume('.')) {
-      if (!isDigit(peek())) {
-        failChar("expected a digit after '.'");
-      }
-      while (isDigit(peek())) {
-        advance();
-      }
-    }
-    if (consume('e') || consume('E')) {
-      if (!consume('+')) {
-        consume('-');
-      }
-      if (!isDigit(peek())) {
-        failChar("expected a digit in the exponent");
-      }
-      while (isDigit(peek())) {
-        advance();
-      }
-    }
-    const std::string_view spelled = text_.substr(start.pos, pos_ - start.pos);
-    double number = 0;
-    const std::from_chars_result read = std::from_chars(spelled.data(), spelled.data() + spelled.size(), number);
-    if (read.ec == std::errc::result_out_of_range && belowDoubleRange(spelled)) {
-      number = spelled[0] == '-' ? -0.0 : 0.0;
-    } else if (read.ec != std::errc() || read.ptr != spelled.data() + spelled.size() || !std::isfinite(number)) {
-      failAt(start, "expected a number within a double's range (magnitude up to 1.8e308)", describe(start.pos, true));
-    }
-    result.kind = JsonValue::Kind::Number;
-    result.number = number;
+  bool close() {
+    if (open_.back()->kind == JsonValue::Kind::Object) keys_.pop_back();
+    open_.pop_back();
+    scanFrom_ = stream_.Tell() + 1;
+    return true;
   }
 
   std::string_view text_;
-  const std::string& source_;
-  std::size_t pos_ = 0;
-  int line_ = 1, column_ = 1;
+  const rapidjson::MemoryStream& stream_;
+  Locator& locator_;
+  JsonValue root_;
+  std::vector<JsonValue*> open_;
+  std::vector<std::unordered_map<std::string, Mark>> keys_;  // per open object: where each key was first written
+  std::string key_;  // the key of the member whose value comes next
+  std::size_t scanFrom_ = 0;
+  std::optional<Problem> problem_;
 };
+
+// The last byte before offset that is not white space, or '\0' at the start.
+char previousToken(std::string_view text, std::size_t offset) {
+  while (offset > 0 && isSpace(text[offset - 1])) --offset;
+  return offset > 0 ? text[offset - 1] : '\0';
+}
+
+// What was expected where RapidJSON stopped, in the words of the rest of this reader; RapidJSON's
+// offsets point at the byte that broke the grammar, or at the backslash of a bad escape.
+[[noreturn]] void failParse(std::string_view text, const std::string& source, Locator& locator,
+                            rapidjson::ParseErrorCode code, std::size_t offset, const TreeBuilder& builder) {
+  std::string expected;
+  bool wholeWord = true;
+  // A misspelt literal stops RapidJSON where it goes wrong (`tru]` at the bracket) or, when it
+  // begins with one (`truex`), at what follows: shown whole, from its start, as a value.
+  const std::size_t tokenStart = builder.nextTokenStart();
+  const bool leadingZero = offset >= 1 && offset < text.size() && isDigit(text[offset]) && text[offset - 1] == '0' &&
+                           (offset == 1 || !(isDigit(text[offset - 2]) || text[offset - 2] == '.'));
+  if (code == rapidjson::kParseErrorValueInvalid && tokenStart < offset && tokenStart < text.size() &&
+      std::isalpha(static_cast<unsigned char>(text[tokenStart]))) {
+    offset = tokenStart;
+  } else if (code != rapidjson::kParseErrorValueInvalid && !leadingZero && offset > 0 && offset < text.size() &&
+             isWordChar(text[offset]) && isWordChar(text[offset - 1])) {
+    while (offset > 0 && isWordChar(text[offset - 1])) --offset;
+    code = rapidjson::kParseErrorValueInvalid;
+  }
+  const char before = previousToken(text, offset);
+  switch (code) {
+    case rapidjson::kParseErrorTermination:
+      if (builder.problem().has_value()) {
+        const TreeBuilder::Problem& problem = *builder.problem();
+        throw Error(source + ":" + lineColumn(locator.at(problem.offset)) + ": " + problem.expected + ", found " +
+                    problem.found);
+      }
+      expected = "expected valid JSON";
+      break;
+    case rapidjson::kParseErrorDocumentEmpty:
+      expected = "expected a value";
+      break;
+    case rapidjson::kParseErrorValueInvalid:
+      if (offset > 0 && text[offset - 1] == '-') {
+        expected = "expected a digit after '-'";
+        wholeWord = false;
+      } else {
+        expected = before == '['   ? "expected a value or ']'"
+                   : before == ',' ? "expected a value after ','"
+                                   : "expected a value";
+      }
+      break;
+    case rapidjson::kParseErrorObjectMissName:
+      expected = before == ',' ? "expected a key in double quotes after ','" : "expected a key in double quotes or '}'";
+      break;
+    case rapidjson::kParseErrorObjectMissColon:
+      expected = "expected ':' after the key " + jsonQuoted(builder.key());
+      break;
+    case rapidjson::kParseErrorObjectMissCommaOrCurlyBracket:
+    case rapidjson::kParseErrorArrayMissCommaOrSquareBracket:
+    case rapidjson::kParseErrorDocumentRootNotSingular:
+      if (leadingZero) {
+        // RapidJSON reads a leading zero as the whole number: "01" stops at the 1.
+        const std::size_t start = offset >= 2 && text[offset - 2] == '-' ? offset - 2 : offset - 1;
+        throw Error(source + ":" + lineColumn(locator.at(start)) + ": expected a number without leading zeros, found " +
+                    describe(text, start, true));
+      }
+      if (code == rapidjson::kParseErrorObjectMissCommaOrCurlyBracket) {
+        expected = "expected ',' or '}'";
+      } else if (code == rapidjson::kParseErrorArrayMissCommaOrSquareBracket) {
+        expected = "expected ',' or ']'";
+      } else {
+        expected = "expected the end of the input after the value";
+      }
+      break;
+    case rapidjson::kParseErrorStringMissQuotationMark:
+    case rapidjson::kParseErrorStringInvalidEncoding: {
+      const char c = offset < text.size() ? text[offset] : '\n';
+      expected = c == '\n' || c == '\r'
+                     ? "expected '\"' to close the string begun at " + lineColumn(locator.at(builder.nextTokenStart()))
+                     : "expected a character or an escape in the string";
+      wholeWord = false;
+      break;
+    }
+    case rapidjson::kParseErrorStringEscapeInvalid:
+      // At the backslash of a bad escape, or at a control character written as it is.
+      wholeWord = false;
+      if (offset < text.size() && text[offset] == '\\') {
+        expected = "expected an escape (\\\" \\\\ \\/ \\b \\f \\n \\r \\t \\uXXXX) after '\\'";
+        offset += 1;
+      } else if (offset < text.size() && (text[offset] == '\n' || text[offset] == '\r')) {
+        expected = "expected '\"' to close the string begun at " + lineColumn(locator.at(builder.nextTokenStart()));
+      } else {
+        expected = "expected a character or an escape in the string";
+      }
+      break;
+    case rapidjson::kParseErrorStringUnicodeEscapeInvalidHex: {
+      // At the backslash: the culprit is the first of the four that is not a hex digit.
+      std::size_t at = offset;
+      for (std::size_t i = offset; i + 1 < text.size() && i < offset + 12; ++i) {
+        if (text[i] == '\\' && text[i + 1] == 'u') {
+          at = i + 2;
+          while (at < text.size() && at < i + 6 && std::isxdigit(static_cast<unsigned char>(text[at]))) ++at;
+          if (at < i + 6) break;
+        }
+      }
+      offset = at;
+      expected = "expected 4 hex digits after \\u";
+      wholeWord = false;
+      break;
+    }
+    case rapidjson::kParseErrorStringUnicodeSurrogateInvalid: {
+      // At the high surrogate's backslash; what follows it is wrong.
+      expected = "expected a low surrogate (\\uDC00-\\uDFFF) after " + std::string(text.substr(offset, 6));
+      offset = std::min(offset + 6, text.size());
+      if (text.compare(offset, 2, "\\u") == 0) {
+        throw Error(source + ":" + lineColumn(locator.at(offset)) + ": " + expected + ", found " +
+                    std::string(text.substr(offset, 6)));
+      }
+      wholeWord = false;
+      break;
+    }
+    case rapidjson::kParseErrorNumberTooBig:
+      expected = TreeBuilder::kNumberRange;
+      break;
+    case rapidjson::kParseErrorNumberMissFraction:
+      expected = "expected a digit after '.'";
+      wholeWord = false;
+      break;
+    case rapidjson::kParseErrorNumberMissExponent:
+      expected = "expected a digit in the exponent";
+      wholeWord = false;
+      break;
+    default:
+      expected = std::string("expected valid JSON (") + rapidjson::GetParseError_En(code) + ")";
+      break;
+  }
+  throw Error(source + ":" + lineColumn(locator.at(offset)) + ": " + expected + ", found " +
+              describe(text, offset, wholeWord));
+}
 
 std::string memberPath(const std::string& path, std::string_view key) {
   return path.empty() ? std::string(key) : path + "." + std::string(key);
@@ -496,7 +528,27 @@ std::string jsonQuoted(std::string_view text) {
 }
 
 JsonValue parseJson(std::string_view text, const std::string& sourceName) {
-  return Parser(text, sourceName).document();
+  if (text.substr(0, 3) == "\xEF\xBB\xBF") {
+    text.remove_prefix(3);  // a byte order mark, as some editors write: not a column
+  }
+  constexpr unsigned kFlags = rapidjson::kParseValidateEncodingFlag | rapidjson::kParseIterativeFlag |
+                              rapidjson::kParseNumbersAsStringsFlag;
+  rapidjson::MemoryStream stream(text.data(), text.size());
+  Locator locator(text);
+  TreeBuilder builder(text, stream, locator);
+  rapidjson::Reader reader;
+  const rapidjson::ParseResult result = reader.Parse<kFlags>(stream, builder);
+  if (result.IsError()) {
+    failParse(text, sourceName, locator, result.Code(), result.Offset(), builder);
+  }
+  // RapidJSON's streams end at a NUL byte: what follows one was never read.
+  std::size_t end = stream.Tell();
+  while (end < text.size() && isSpace(text[end])) ++end;
+  if (end < text.size()) {
+    throw Error(sourceName + ":" + lineColumn(locator.at(end)) +
+                ": expected the end of the input after the value, found " + describe(text, end, true));
+  }
+  return std::move(builder.root());
 }
 
 std::string readTextFile(const std::string& path) {

@@ -3,11 +3,11 @@
 #pragma once
 
 /// @file
-/// A small JSON reader for the evaluation suite's scene files. A scene file is written by hand,
-/// so a mistake in it must come back as one clear line: the file, the line and column, the field
-/// and what was expected there. parseJson follows RFC 8259 strictly (no comments, no trailing
-/// commas) and reports the first problem; JsonField does the typed reads on top of it, so the
-/// code that reads a scene never formats an error message itself.
+/// The JSON reader of the evaluation suite's scene files, on RapidJSON. A scene file is written by
+/// hand, so a mistake in it must come back as one clear line: the file, the line and column, the
+/// field and what was expected there. parseJson follows RFC 8259 strictly (no comments, no
+/// trailing commas) and reports the first problem; JsonField does the typed reads on top of it,
+/// so the code that reads a scene never formats an error message itself.
 
 #include <array>
 #include <cstddef>

@@ -217,6 +217,11 @@ TEST(Json, TrailingContentAndMisspeltLiterals) {
   EXPECT_EQ(parseError("[True]"), "t.json:1:2: expected a value or ']', found 'True'");
   EXPECT_EQ(parseError("NaN"), "t.json:1:1: expected a value, found 'NaN'");
   EXPECT_EQ(parseError("[1, // note\n 2]"), "t.json:1:5: expected a value after ',', found '/'");
+  // A NUL byte is not the end of the input.
+  EXPECT_EQ(parseError(std::string("[1]\0", 4)),
+            "t.json:1:4: expected the end of the input after the value, found control character U+0000");
+  EXPECT_EQ(parseError(std::string("[1,\0 2]", 7)),
+            "t.json:1:4: expected a value after ',', found control character U+0000");
 }
 
 TEST(Json, EmptyInput) {
