@@ -444,6 +444,7 @@ void SoftBodySolver::measureEnergy(btScalar timeStep) {
         if (pair->softBody != &softBody || !pair->live || pair->response.corrections.empty()) continue;
         if (!guarding) energy.toolFastest = std::max(energy.toolFastest, fastestCorner(*tool, before, now, inverseStep));
         guarding = true;
+        ++energy.piecesMoving;
         guarded = true;
         energy.boundForcesNextStep = energy.boundForcesNextStep || settings.boundForcesNextStep;
         energy.speedFactor = std::max(energy.speedFactor, double(settings.speedFactor));
@@ -558,7 +559,9 @@ void SoftBodySolver::guardEnergy() {
       if (!energy.boundForcesNextStep) return;
       if (cache == nullptr) cache = &cacheOf(softBody);
       cache->boundStep = m_step;
-      const double acrossBody = double((high - low).length() * softBody.m_sst.isdt);
+      // In a grasp, the holds on both sides take back what the body's pressure kicks (the clamp's
+      // vessel); against one piece the body bulges away with the kick (generated seed 748).
+      const double acrossBody = energy.piecesMoving > 1 ? double((high - low).length() * softBody.m_sst.isdt) : 0.0;
       cache->nextForceBound =
           std::max(energy.speedFactor * std::max({energy.restingSpeed, energy.toolFastest, fastestLeft}), acrossBody);
     };

@@ -118,23 +118,27 @@ TEST(GeneratedScenes, TheEnergyGuardHoldsScenesThatExplodeWithoutIt) {
 // (EnergyGuardSettings::boundForcesNextStep) is what holds these seeds: a pressure body that a fast
 // tool squeezes flat or turns through gets Bullet's pressure (kPR·area/|volume|) at a volume near
 // zero. A needle turning 159° a step in a pressure vessel (4726), a blade turning 68° a step in
-// one (1025), a plate turning 47° a step in a pressure ellipsoid (4615).
+// one (1025), a plate turning 47° a step in a pressure ellipsoid (4615), a plate crushing a
+// pressure ball onto the ground, which the bound holds since it counts the body's extent only in
+// a grasp (748).
 TEST(GeneratedScenes, TheForceBoundHoldsSqueezedPressureBodies) {
-  expectStageHoldsSeeds({4726u, 1025u, 4615u}, "the bound", [](SceneSpec& scene) { scene.boundForces = false; });
+  expectStageHoldsSeeds({4726u, 1025u, 4615u, 748u}, "the bound", [](SceneSpec& scene) { scene.boundForces = false; });
 }
 
 // Holds that reach along their whole planes keep a squeezed pressure body from bulging past the
 // tool, until Bullet's pressure (kPR·area/volume) throws it apart; reaching four skins past the skin
 // they let it: a kinematic plate crushing a pressure ball onto the ground (748), whose volume turns
-// negative and which Bullet's pressure throws through the ground at 131 m/s.
+// negative and which Bullet's pressure throws through the ground at 131 m/s. The energy guard's
+// bound on the next step's forces now holds that seed too, so it is off here.
 TEST(GeneratedScenes, AHoldPlaneReachLetsASqueezedPressureBodyBulgePastTheTool) {
   SceneSpec scene = generateScene(748, kScenes);
+  scene.boundForces = false;
   const Verdict wholePlanes = runAndJudge(scene);
   EXPECT_TRUE(wholePlanes.energy) << "with whole planes: " << joinReasons(wholePlanes);
   scene.holdPlaneReach = 4;
   const Verdict reaching = runAndJudge(scene);
-  EXPECT_FALSE(reaching.failed) << "reaching 4 skins: " << joinReasons(reaching)
-                                << "\n  reproduce: " << reproduce(748) << " --hold-reach 4";
+  EXPECT_FALSE(reaching.failed) << "reaching 4 skins: " << joinReasons(reaching) << "\n  reproduce: " << reproduce(748)
+                                << " --no-force-bound --hold-reach 4";
 }
 
 TEST(GeneratedScenesEverywhere, RunCleanly) {

@@ -56,6 +56,7 @@ class SoftBodySolver : public btDefaultSoftBodySolver {
     double allowance = 0;   // ½·m·u² over the nodes ThinTool moved, u the tool's speed there (J)
     double fastest = 0;     // fastest node as predicted, or tool point at a node ThinTool moved (m/s)
     double toolFastest = 0;  // the guarding tools' fastest corner over the step (m/s)
+    int piecesMoving = 0;    // the tool pieces whose response moved a node of the body in the collision pass
     double speedFactor = 1;
     double energySlack = 0;
     double restingSpeed = 0;
@@ -107,7 +108,7 @@ class SoftBodySolver : public btDefaultSoftBodySolver {
     std::vector<Index> pinned;
     // The bound on what the body's forces add to a node's velocity in the step after boundStep
     // (EnergyGuardSettings::boundForcesNextStep), m/s per axis: the larger of speedFactor times
-    // the fastest node, tool corner or restingSpeed, and the body's extent over the step.
+    // the fastest node, tool corner or restingSpeed, and, in a grasp, the body's extent over the step.
     double nextForceBound = 0;
     int boundStep = -1;
   };

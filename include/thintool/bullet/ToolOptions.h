@@ -46,11 +46,13 @@ namespace thintool {
 /// touch it at all. For that body, Bullet's own bound on a node's change of velocity from its forces
 /// in a step (btSoftBodyWorldInfo::m_maxDisplacement over the step, per axis; 1000 m by default) is
 /// lowered, for its predictMotion only, to the larger of: speedFactor times the fastest of its
-/// nodes as the guard left them, the tool's fastest corner over that step, and restingSpeed; and
-/// the body's extent over the step (a squeezed pressure body held in a grasp gets a large kick
-/// every step, which the holds take back in the solve). The bound stays for the next step while a
-/// node is predicted as fast as it allows, and costs one pass over the body's nodes in each step
-/// it applies. Gravity and pose matching are not bounded.
+/// nodes as the guard left them, the tool's fastest corner over that step, and restingSpeed; and,
+/// when two or more tool pieces moved its nodes (a grasp), the body's extent over the step: a
+/// squeezed pressure body held between jaws gets a large kick every step, which the holds on both
+/// sides take back in the solve. Against a single piece the body bulges away from it instead, and
+/// the kick stays. The bound stays for the next step while a node is predicted as fast as it
+/// allows, and costs one pass over the body's nodes in each step it applies. Gravity and pose
+/// matching are not bounded.
 struct EnergyGuardSettings {
   bool enabled = true;
   Real speedFactor = 2;    ///< >= 1
