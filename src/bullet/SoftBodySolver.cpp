@@ -441,10 +441,11 @@ void SoftBodySolver::measureEnergy(btScalar timeStep) {
       const Pose before = stepStart(*tool, now);
       bool guarding = false;
       for (const auto& pair : tool->m_pairs) {
-        if (pair->softBody != &softBody || !pair->live || pair->response.corrections.empty()) continue;
+        if (pair->softBody != &softBody || !pair->live) continue;
+        if (!pair->response.corrections.empty() || pair->holdCount > 0) ++energy.piecesHolding;
+        if (pair->response.corrections.empty()) continue;
         if (!guarding) energy.toolFastest = std::max(energy.toolFastest, fastestCorner(*tool, before, now, inverseStep));
         guarding = true;
-        ++energy.piecesMoving;
         guarded = true;
         energy.boundForcesNextStep = energy.boundForcesNextStep || settings.boundForcesNextStep;
         energy.speedFactor = std::max(energy.speedFactor, double(settings.speedFactor));
@@ -561,7 +562,7 @@ void SoftBodySolver::guardEnergy() {
       cache->boundStep = m_step;
       // In a grasp, the holds on both sides take back what the body's pressure kicks (the clamp's
       // vessel); against one piece the body bulges away with the kick (generated seed 748).
-      const double acrossBody = energy.piecesMoving > 1 ? double((high - low).length() * softBody.m_sst.isdt) : 0.0;
+      const double acrossBody = energy.piecesHolding > 1 ? double((high - low).length() * softBody.m_sst.isdt) : 0.0;
       cache->nextForceBound =
           std::max(energy.speedFactor * std::max({energy.restingSpeed, energy.toolFastest, fastestLeft}), acrossBody);
     };

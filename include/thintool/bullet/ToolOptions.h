@@ -47,7 +47,7 @@ namespace thintool {
 /// in a step (btSoftBodyWorldInfo::m_maxDisplacement over the step, per axis; 1000 m by default) is
 /// lowered, for its predictMotion only, to the larger of: speedFactor times the fastest of its
 /// nodes as the guard left them, the tool's fastest corner over that step, and restingSpeed; and,
-/// when two or more tool pieces moved its nodes (a grasp), the body's extent over the step: a
+/// when two or more tool pieces moved or held its nodes (a grasp), the body's extent over the step: a
 /// squeezed pressure body held between jaws gets a large kick every step, which the holds on both
 /// sides take back in the solve. Against a single piece the body bulges away from it instead, and
 /// the kick stays. The bound stays for the next step while a node is predicted as fast as it
