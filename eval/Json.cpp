@@ -196,11 +196,13 @@ class TreeBuilder : public rapidjson::BaseReaderHandler<rapidjson::UTF8<>, TreeB
   TreeBuilder(std::string_view text, const rapidjson::MemoryStream& stream, Locator& locator)
       : text_(text), stream_(stream), locator_(locator) {}
 
-  bool Null() { return add(JsonValue::Kind::Null) != nullptr; }
+  bool Null() {
+    add(JsonValue::Kind::Null, tokenStart());
+    return true;
+  }
   bool Bool(bool value) {
-    JsonValue* added = add(JsonValue::Kind::Boolean);
-    if (added != nullptr) added->boolean = value;
-    return added != nullptr;
+    add(JsonValue::Kind::Boolean, tokenStart()).boolean = value;
+    return true;
   }
   // Numbers come as written (kParseNumbersAsStringsFlag), so that -0 keeps its sign and one too
   // small for a double reads as 0.
@@ -214,16 +216,14 @@ class TreeBuilder : public rapidjson::BaseReaderHandler<rapidjson::UTF8<>, TreeB
     } else if (read.ec != std::errc() || read.ptr != spelled + length || !std::isfinite(number)) {
       return stop(start, kNumberRange, describe(text_, start, true));
     }
-    JsonValue* added = add(JsonValue::Kind::Number, start);
-    if (added != nullptr) added->number = number;
-    return added != nullptr;
+    add(JsonValue::Kind::Number, start).number = number;
+    return true;
   }
   bool String(const char* text, rapidjson::SizeType length, bool) {
     const std::size_t start = tokenStart();
     if (!validUtf8(std::string_view(text, length), start)) return false;
-    JsonValue* added = add(JsonValue::Kind::String, start);
-    if (added != nullptr) added->text.assign(text, length);
-    return added != nullptr;
+    add(JsonValue::Kind::String, start).text.assign(text, length);
+    return true;
   }
   bool StartObject() { return open(JsonValue::Kind::Object); }
   bool Key(const char* text, rapidjson::SizeType length, bool) {
@@ -302,8 +302,7 @@ class TreeBuilder : public rapidjson::BaseReaderHandler<rapidjson::UTF8<>, TreeB
     return {quote, "a \\u escape"};
   }
 
-  JsonValue* add(JsonValue::Kind kind) { return add(kind, tokenStart()); }
-  JsonValue* add(JsonValue::Kind kind, std::size_t start) {
+  JsonValue& add(JsonValue::Kind kind, std::size_t start) {
     JsonValue* value = &root_;
     if (!open_.empty()) {
       JsonValue& parent = *open_.back();
@@ -318,7 +317,7 @@ class TreeBuilder : public rapidjson::BaseReaderHandler<rapidjson::UTF8<>, TreeB
     value->line = mark.line;
     value->column = mark.column;
     ended();
-    return value;
+    return *value;
   }
 
   bool open(JsonValue::Kind kind) {
@@ -328,7 +327,7 @@ class TreeBuilder : public rapidjson::BaseReaderHandler<rapidjson::UTF8<>, TreeB
                   "one nested deeper");
     }
     // A value's parent never gains another item while the value is open, so the pointers stay valid.
-    open_.push_back(add(kind, start));
+    open_.push_back(&add(kind, start));
     if (kind == JsonValue::Kind::Object) keys_.emplace_back();
     scanFrom_ = start + 1;
     return true;

@@ -562,7 +562,8 @@ void SoftBodySolver::guardEnergy() {
       cache->boundStep = m_step;
       // In a grasp, the holds on both sides take back what the body's pressure kicks (the clamp's
       // vessel); against one piece the body bulges away with the kick (generated seed 748).
-      const double acrossBody = energy.piecesHolding > 1 ? double((high - low).length() * softBody.m_sst.isdt) : 0.0;
+      const double acrossBody =
+          energy.piecesHolding > 1 ? double((high - low).length() * softBody.m_sst.isdt) : 0.0;
       cache->nextForceBound =
           std::max(energy.speedFactor * std::max({energy.restingSpeed, energy.toolFastest, fastestLeft}), acrossBody);
     };

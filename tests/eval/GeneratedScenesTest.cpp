@@ -129,7 +129,7 @@ TEST(GeneratedScenes, TheForceBoundHoldsSqueezedPressureBodies) {
 // tool, until Bullet's pressure (kPR·area/volume) throws it apart; reaching four skins past the skin
 // they let it: a kinematic plate crushing a pressure ball onto the ground (748), whose volume turns
 // negative and which Bullet's pressure throws through the ground at 131 m/s. The energy guard's
-// bound on the next step's forces now holds that seed too, so it is off here.
+// bound on the next step's forces holds that seed as well, so it is off here.
 TEST(GeneratedScenes, AHoldPlaneReachLetsASqueezedPressureBodyBulgePastTheTool) {
   SceneSpec scene = generateScene(748, kScenes);
   scene.boundForces = false;

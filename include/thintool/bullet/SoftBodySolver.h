@@ -56,7 +56,7 @@ class SoftBodySolver : public btDefaultSoftBodySolver {
     double allowance = 0;   // ½·m·u² over the nodes ThinTool moved, u the tool's speed there (J)
     double fastest = 0;     // fastest node as predicted, or tool point at a node ThinTool moved (m/s)
     double toolFastest = 0;  // the guarding tools' fastest corner over the step (m/s)
-    int piecesHolding = 0;   // the tool pieces whose response moved or held a node of the body in this step
+    int piecesHolding = 0;   // tool pieces whose response moved or held a node of the body this step
     double speedFactor = 1;
     double energySlack = 0;
     double restingSpeed = 0;
