@@ -116,7 +116,7 @@ ClampStage::ClampStage(ClampBody kind, bool friction, double timeStep, double sq
 
   m_faces = faceIndices(*m_body);
   const auto b = boxes();
-  for (int j = 0; j < 2; ++j) m_trackers[j].start(b[j], nodePositions(*m_body), m_restCentreHeight);
+  for (int j = 0; j < 2; ++j) m_trackers[j].start(b[j], nodePositions(*m_body), m_faces);
   m_lastMomentum = momentum(*m_body);
 }
 

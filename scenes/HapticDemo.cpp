@@ -84,7 +84,7 @@ HapticDemoResult runHapticDemo(const HapticDemoSettings& settings, haptics::Devi
 
   const std::vector<std::array<int, 3>> faces = faceIndices(scene.ball());
   CrossingTracker tracker;
-  tracker.start(scene.toolBox(), nodePositions(scene.ball()), scene.ballMeanHeight());
+  tracker.start(scene.toolBox(), nodePositions(scene.ball()), faces);
 
   HapticDemoResult result;
   const double dt = 1 / settings.physicsRate;

@@ -3,11 +3,15 @@
 #pragma once
 
 /// @file
-/// Ground-truth measures of a thin tool against a soft surface, computed from positions alone
-/// and independent of ThinTool's detection code (their own geometry, their own tolerances), so
-/// that they can judge stock Bullet and ThinTool alike.
+/// The scenes' measures of a box-shaped tool against a soft surface: the evaluation suite's ground
+/// truth (eval/GroundTruth.h), the one every table of the project is judged by, for one box. It
+/// works from positions alone and never calls ThinTool's detection, so that it judges stock Bullet
+/// and ThinTool alike.
+
+#include "GroundTruth.h"
 
 #include <array>
+#include <optional>
 #include <vector>
 
 namespace thintool::scenes {
@@ -16,47 +20,41 @@ struct Point {
   double x = 0, y = 0, z = 0;
 };
 
-/// A box-shaped tool: its pose (rotation rows and origin) and half extents; y is the thin axis
-/// the crossing measures use.
+/// A box-shaped tool: its pose (rotation rows and origin) and half extents.
 struct ToolBox {
   std::array<Point, 3> rotationRows{{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
   Point origin;
   Point halfExtents;
 
   Point toLocal(const Point& world) const;
+  Pose pose() const;
 };
 
-/// Whether point lies inside the closed surface (vertices, triangles), by the parity of the
-/// crossings of a ray in a fixed, deliberately irregular direction, counted with signed volumes.
-bool insideClosedSurface(const Point& point, const std::vector<Point>& vertices,
-                         const std::vector<std::array<int, 3>>& triangles);
-
-/// Measures of one run (baseline.md's definitions).
+/// Measures of one run, as eval::GroundTruthRun defines them.
 struct RunMetrics {
-  int crossed = 0;      ///< nodes that went from below the tool's mid-plane to above it, inside its footprint
-  int capNodes = 0;     ///< upper-cap nodes under the footprint when the tool started moving
-  int capCrossed = 0;   ///< of those, how many crossed
-  double maxPenetration = 0;  ///< deepest a node coming from below got past the underside (m)
-  bool endsInside = false;    ///< the tool's centre ends inside the closed soft surface
-  bool everInside = false;    ///< ... at the end of any step
-  int insideSteps = 0;        ///< steps at whose end it was inside
-  int stillCrossed = 0;       ///< crossed nodes that are on the far side of the mid-plane, in the footprint, at the end
+  int crossed = 0;             ///< distinct nodes that passed through the tool
+  int stillCrossed = 0;        ///< of those, on the far side of the tool's mid-surface, within it, at the end
+  double maxPenetration = 0;   ///< deepest a node or face centroid lay inside the tool after a step (m)
+  bool endsInside = false;     ///< the tool's centre ends inside the closed soft surface
+  bool everInside = false;     ///< ... at the end of any step
+  int insideSteps = 0;         ///< steps at whose end it was inside
+  int piercedSteps = 0;        ///< steps that ended with a soft face deeper than 0.1 mm in the tool
 };
 
-/// Follows the soft nodes step by step in the tool's frame.
+/// Follows the soft surface against one box, step by step.
 class CrossingTracker {
  public:
-  /// Starts tracking; ballCentreHeight splits the ball's upper cap from the rest.
-  void start(const ToolBox& tool, const std::vector<Point>& nodes, double ballCentreHeight);
+  /// Starts tracking the surface (nodes, faces): closed (a ball, whose inside the tool must not
+  /// reach) or open (a sheet).
+  void start(const ToolBox& tool, const std::vector<Point>& nodes, const std::vector<std::array<int, 3>>& faces,
+             bool closedSurface = true);
   /// Call after every step with the tool's pose and the nodes' positions.
   void update(const ToolBox& tool, const std::vector<Point>& nodes, const std::vector<std::array<int, 3>>& faces);
   const RunMetrics& metrics() const { return m_metrics; }
 
  private:
-  bool inFootprint(const ToolBox& tool, const Point& local) const;
-  std::vector<Point> m_previousLocal;
-  std::vector<char> m_crossed;
-  std::vector<char> m_cap;
+  std::optional<eval::GroundTruth> m_truth;
+  std::vector<Vec3> m_nodes;
   RunMetrics m_metrics;
 };
 

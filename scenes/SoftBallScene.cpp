@@ -387,7 +387,7 @@ PressResult runPress(const PressSettings& settings) {
   scene.step(pose);  // place the tool at its start
   const std::vector<std::array<int, 3>> faces = faceIndices(scene.ball());
   CrossingTracker tracker;
-  tracker.start(scene.toolBox(), nodePositions(scene.ball()), scene.ballMeanHeight());
+  tracker.start(scene.toolBox(), nodePositions(scene.ball()), faces);
 
   PressResult result;
   double wallMicroseconds = 0;
@@ -419,7 +419,7 @@ RunMetrics runTrajectory(SoftBallScene& scene, int steps, const std::function<bt
   scene.step(poseAt(0));
   const std::vector<std::array<int, 3>> faces = faceIndices(scene.ball());
   CrossingTracker tracker;
-  tracker.start(scene.toolBox(), nodePositions(scene.ball()), scene.ballMeanHeight());
+  tracker.start(scene.toolBox(), nodePositions(scene.ball()), faces);
   for (int i = 1; i <= steps; ++i) {
     scene.step(poseAt(i));
     tracker.update(scene.toolBox(), nodePositions(scene.ball()), faces);

@@ -377,7 +377,7 @@ StressOutcome runStressCase(const StressCase& stressCase) {
   scene.step(start);
   const std::vector<std::array<int, 3>> faces = faceIndices(scene.ball());
   CrossingTracker tracker;
-  tracker.start(scene.toolBox(), nodePositions(scene.ball()), scene.ballMeanHeight());
+  tracker.start(scene.toolBox(), nodePositions(scene.ball()), faces);
   btTransform pose = start;
   double wallMicroseconds = 0;
   for (int i = 1; i <= moveSteps + holdSteps; ++i) {

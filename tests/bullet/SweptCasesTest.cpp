@@ -102,7 +102,7 @@ RunMetrics thrownSheet(btScalar& outHighest) {
   const btScalar dt = btScalar(1) / 60;
   scene.soft.world.stepSimulation(dt, 1, dt);  // at rest: nothing near the plate
   CrossingTracker tracker;
-  tracker.start(box, nodePositions(sheet), 0);
+  tracker.start(box, nodePositions(sheet), faces, false);
   sheet.setVelocity(btVector3(0, 15, 0));
   for (int step = 0; step < 10; ++step) {
     scene.soft.world.stepSimulation(dt, 1, dt);
