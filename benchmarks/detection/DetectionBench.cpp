@@ -98,14 +98,14 @@ struct PressedSphere {
 
 void DetectionStep(benchmark::State& state) {
   const PressedSphere scene(int(state.range(0)));
-  DetectionParameters parameters;
-  parameters.filters.reverseRay = false;
+  DetectionInput input;
+  input.filters.reverseRay = false;
   PairHistory history;
   DetectionResult result;
   result.contacts.reserve(scene.model.nodeCount());
   const StepContext step{scene.model, scene.pose, scene.pose, kDt, kSkin};
   for (auto _ : state) {
-    detectContacts(step, scene.patch, parameters, history, result);
+    detectContacts(step, scene.patch, input, history, result);
     benchmark::DoNotOptimize(result.contacts.data());
   }
   scene.count(state, result.counters);

@@ -370,12 +370,12 @@ void ToolAlgorithm::detect(PieceStep& step) {
                 state.detection);
   } else {
     const SoftBodyRayQuery reverseQuery(step.softBody, state.traversalStack);
-    DetectionParameters parameters;
-    parameters.filters = m_tool.m_options.filters;
-    parameters.reverseRayLength = parameters.filters.reverseRayLength.value_or(
+    DetectionInput input;
+    input.filters = m_tool.m_options.filters;
+    input.reverseRayLength = input.filters.reverseRayLength.value_or(
         length(toVec3(step.softBody.m_bounds[1] - step.softBody.m_bounds[0])));
-    parameters.reverseQuery = &reverseQuery;
-    detectContacts(step.context(), state.patch, parameters, state.history,
+    input.reverseQuery = &reverseQuery;
+    detectContacts(step.context(), state.patch, input, state.history,
                    state.detection);
   }
   state.detection.counters.facesWalked = step.facesWalked;

@@ -63,13 +63,13 @@ void DetectionWorkspace::prepare(Index n) {
   m_visitedList.reserve(n);
 }
 
-void detectContacts(const StepContext& step, const SoftPatch& patch, const DetectionParameters& parameters,
+void detectContacts(const StepContext& step, const SoftPatch& patch, const DetectionInput& input,
                     PairHistory& history, DetectionResult& out) {
   THINTOOL_ASSERT(patch.consistent());
   const ToolModel& model = step.model;
   const Pose& toolPose = step.pose;
   const Real skin = step.skin;
-  const SoftSurfaceRayQuery* reverseQuery = parameters.reverseQuery;
+  const SoftSurfaceRayQuery* reverseQuery = input.reverseQuery;
   DetectionWorkspace& work = out.workspace;
   std::vector<Contact>& outContacts = out.contacts;
   DetectionCounters& outCounters = out.counters;
@@ -125,9 +125,9 @@ void detectContacts(const StepContext& step, const SoftPatch& patch, const Detec
   }
 
   // Filters, in the paper's order, on the nodes whose ray found a face.
-  const bool useCheck1 = parameters.filters.check1;
-  const bool useCheck2 = parameters.filters.check2 && patch.orientation != 0;
-  const bool useReverseRay = useCheck2 && parameters.filters.reverseRay && reverseQuery != nullptr;
+  const bool useCheck1 = input.filters.check1;
+  const bool useCheck2 = input.filters.check2 && patch.orientation != 0;
+  const bool useReverseRay = useCheck2 && input.filters.reverseRay && reverseQuery != nullptr;
   const Real orientation = patch.orientation >= 0 ? 1 : -1;
   outCounters.nodesTested = static_cast<Index>(work.m_visitedList.size());
   // Sorted so that contacts come out in node order whatever order the faces arrived in.
@@ -157,7 +157,7 @@ void detectContacts(const StepContext& step, const SoftPatch& patch, const Detec
       }
       if (useReverseRay) {
         const Vec3 from = toolPose.apply(model.positions[node]);
-        const Vec3 delta = toolPose.applyToDirection(normal) * parameters.reverseRayLength;
+        const Vec3 delta = toolPose.applyToDirection(normal) * input.reverseRayLength;
         if (!reverseQuery->anyHit(from, delta)) {
           ++outCounters.excludedByCheck2;
           out.excludedNodes[1].push_back(node);

@@ -39,13 +39,13 @@ class Fig4Sequence : public ::testing::Test {
   Step stepAt(Real depth, bool check1, bool check2) {
     Pose pose;
     pose.translation = {0, 1 - depth + kHalfThickness, 0};
-    DetectionParameters parameters;
-    parameters.filters.check1 = check1;
-    parameters.filters.check2 = check2;
-    parameters.reverseRayLength = 3;
-    parameters.reverseQuery = &m_query;
+    DetectionInput input;
+    input.filters.check1 = check1;
+    input.filters.check2 = check2;
+    input.reverseRayLength = 3;
+    input.reverseQuery = &m_query;
     Step step;
-    detectContacts({m_model, pose, pose, kDt, kSkin}, m_patch, parameters, m_history, m_result);
+    detectContacts({m_model, pose, pose, kDt, kSkin}, m_patch, input, m_history, m_result);
     const std::vector<Contact>& contacts = m_result.contacts;
     step.counters = m_result.counters;
     step.colliding = static_cast<Index>(contacts.size());
@@ -148,11 +148,11 @@ TEST(Detection, ContactsReportWhereTheRayMetTheFace) {
   const ToolModel model = buildToolModel(makeBoxMesh({0.2, 0.01, 0.2}), settings);
   Pose pose;
   pose.translation = {0, 0.01, 0};  // underside at y = 0
-  DetectionParameters parameters;
-  parameters.filters.reverseRay = false;  // an open triangle: nothing behind it
+  DetectionInput input;
+  input.filters.reverseRay = false;  // an open triangle: nothing behind it
   PairHistory history;
   DetectionResult result;
-  detectContacts({model, pose, pose, 0.01, 0}, patch, parameters, history, result);
+  detectContacts({model, pose, pose, 0.01, 0}, patch, input, history, result);
   const std::vector<Contact>& contacts = result.contacts;
   const DetectionCounters& counters = result.counters;
   ASSERT_EQ(contacts.size(), 4u);  // the 2 × 2 grid of the underside
@@ -178,9 +178,9 @@ TEST(Detection, NonFiniteSoftFacesAreSkippedAndCounted) {
   PairHistory history;
   DetectionResult result;
   test::BruteForceRayQuery query(patch);
-  DetectionParameters parameters;
-  parameters.reverseQuery = &query;
-  detectContacts({model, pose, pose, 0.01, 0}, patch, parameters, history, result);
+  DetectionInput input;
+  input.reverseQuery = &query;
+  detectContacts({model, pose, pose, 0.01, 0}, patch, input, history, result);
   const std::vector<Contact>& contacts = result.contacts;
   const DetectionCounters& counters = result.counters;
   EXPECT_EQ(counters.skippedFaces, 5u);  // an icosahedron vertex has five faces

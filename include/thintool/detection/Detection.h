@@ -45,8 +45,9 @@ struct FilterSettings {
   std::optional<Real> reverseRayLength;
 };
 
-/// Per-step parameters, resolved by the glue for one soft body.
-struct DetectionParameters {
+/// The detection stage's input beyond the step and the patch: its settings, resolved by the glue
+/// for one soft body (as ForceInput is for the force stage).
+struct DetectionInput {
   FilterSettings filters;
   Real reverseRayLength = 0;  ///< filters.reverseRayLength, or the glue's choice when it is empty (m, > 0)
   /// The soft surface check 2's reverse ray is cast against; null when filters.reverseRay is off.
@@ -125,7 +126,7 @@ class DetectionWorkspace {
   void prepare(Index nodeCount);
 
  private:
-  friend void detectContacts(const StepContext&, const SoftPatch&, const DetectionParameters&, PairHistory&,
+  friend void detectContacts(const StepContext&, const SoftPatch&, const DetectionInput&, PairHistory&,
                              DetectionResult&);
   std::vector<Vec3> m_localPositions;
   std::vector<std::uint8_t> m_localValid;
@@ -149,7 +150,7 @@ struct DetectionResult {
 /// Finds this step's contacts between the tool piece at the context's pose, grown by its skin, and
 /// the soft patch, filters them, and updates the pair's history. Allocates nothing once the result
 /// has grown to the patch and tool sizes.
-void detectContacts(const StepContext& step, const SoftPatch& patch, const DetectionParameters& parameters,
+void detectContacts(const StepContext& step, const SoftPatch& patch, const DetectionInput& input,
                     PairHistory& history, DetectionResult& out);
 
 }  // namespace thintool
