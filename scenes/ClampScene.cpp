@@ -116,7 +116,7 @@ ClampStage::ClampStage(ClampBody kind, bool friction, double timeStep, double sq
 
   m_faces = faceIndices(*m_body);
   const auto b = boxes();
-  for (int j = 0; j < 2; ++j) m_trackers[j].start(b[j], nodePositions(*m_body), m_faces);
+  for (int j = 0; j < 2; ++j) m_truths[j].start(b[j], nodePositions(*m_body), m_faces);
   m_lastMomentum = momentum(*m_body);
 }
 
@@ -162,9 +162,9 @@ ClampSample ClampStage::step(const btTransform& pose, double opening, const std:
   const auto b = boxes();
   const std::vector<Point> nodes = nodePositions(*m_body);
   for (int j = 0; j < 2; ++j) {
-    m_trackers[j].update(b[j], nodes, m_faces);
-    sample.crossed += m_trackers[j].metrics().crossed;
-    sample.jawInside = sample.jawInside || m_trackers[j].metrics().endsInside;
+    m_truths[j].update(b[j], nodes, m_faces);
+    sample.crossed += m_truths[j].metrics().crossed;
+    sample.jawInside = sample.jawInside || m_truths[j].metrics().endsInside;
   }
   return sample;
 }

@@ -55,7 +55,7 @@ class ClampStage {
   std::unique_ptr<Clamp> m_clamp;
   double m_closed = 0;
   std::vector<std::array<int, 3>> m_faces;
-  std::array<CrossingTracker, 2> m_trackers;
+  std::array<BoxGroundTruth, 2> m_truths;
   btVector3 m_lastMomentum{0, 0, 0};
   double m_time = 0;
   double m_wallMicroseconds = 0;

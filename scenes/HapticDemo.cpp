@@ -83,8 +83,8 @@ HapticDemoResult runHapticDemo(const HapticDemoSettings& settings, haptics::Devi
   loop.publishTool(start, {});
 
   const std::vector<std::array<int, 3>> faces = faceIndices(scene.ball());
-  CrossingTracker tracker;
-  tracker.start(scene.toolBox(), nodePositions(scene.ball()), faces);
+  BoxGroundTruth truth;
+  truth.start(scene.toolBox(), nodePositions(scene.ball()), faces);
 
   HapticDemoResult result;
   const double dt = 1 / settings.physicsRate;
@@ -109,7 +109,7 @@ HapticDemoResult runHapticDemo(const HapticDemoSettings& settings, haptics::Devi
     tool.applyCentralForce(toBt(loop.toolForce(position, velocity)));
     physicsMicroseconds += scene.step();
     loop.publishTool(toVec3(tool.getCenterOfMassPosition()), toVec3(tool.getLinearVelocity()));
-    tracker.update(scene.toolBox(), nodePositions(scene.ball()), faces);
+    truth.update(scene.toolBox(), nodePositions(scene.ball()), faces);
 
     const ToolStepReport& report = scene.tool()->report();
     HapticSample sample;
@@ -132,7 +132,7 @@ HapticDemoResult runHapticDemo(const HapticDemoSettings& settings, haptics::Devi
   result.steps = static_cast<int>(result.trace.size());
   result.physicsMicrosecondsPerStep = result.steps > 0 ? physicsMicroseconds / result.steps : 0;
   result.loop = loop.statistics();
-  result.metrics = tracker.metrics();
+  result.metrics = truth.metrics();
   return result;
 }
 

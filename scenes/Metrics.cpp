@@ -28,7 +28,7 @@ Pose ToolBox::pose() const {
   return pose;
 }
 
-void CrossingTracker::start(const ToolBox& tool, const std::vector<Point>& nodes,
+void BoxGroundTruth::start(const ToolBox& tool, const std::vector<Point>& nodes,
                             const std::vector<std::array<int, 3>>& faces, bool closedSurface) {
   m_metrics = RunMetrics{};
   eval::GroundTruthPiece piece{
@@ -39,7 +39,7 @@ void CrossingTracker::start(const ToolBox& tool, const std::vector<Point>& nodes
   m_truth->start({tool.pose()}, m_nodes, faces);
 }
 
-void CrossingTracker::update(const ToolBox& tool, const std::vector<Point>& nodes,
+void BoxGroundTruth::update(const ToolBox& tool, const std::vector<Point>& nodes,
                              const std::vector<std::array<int, 3>>& faces) {
   if (!m_truth.has_value()) return;
   toVec3s(nodes, m_nodes);

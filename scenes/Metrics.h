@@ -42,7 +42,7 @@ struct RunMetrics {
 };
 
 /// Follows the soft surface against one box, step by step.
-class CrossingTracker {
+class BoxGroundTruth {
  public:
   /// Starts tracking the surface (nodes, faces): closed (a ball, whose inside the tool must not
   /// reach) or open (a sheet).

@@ -386,8 +386,8 @@ PressResult runPress(const PressSettings& settings) {
   btTransform pose(btQuaternion::getIdentity(), scene.aboveBall(startHeight));
   scene.step(pose);  // place the tool at its start
   const std::vector<std::array<int, 3>> faces = faceIndices(scene.ball());
-  CrossingTracker tracker;
-  tracker.start(scene.toolBox(), nodePositions(scene.ball()), faces);
+  BoxGroundTruth truth;
+  truth.start(scene.toolBox(), nodePositions(scene.ball()), faces);
 
   PressResult result;
   double wallMicroseconds = 0;
@@ -397,7 +397,7 @@ PressResult runPress(const PressSettings& settings) {
     pose.setOrigin(scene.aboveBall(height));
     result.stepMicroseconds.push_back(scene.step(pose));
     wallMicroseconds += result.stepMicroseconds.back();
-    tracker.update(scene.toolBox(), nodePositions(scene.ball()), faces);
+    truth.update(scene.toolBox(), nodePositions(scene.ball()), faces);
     if (thintool::Tool* tool = scene.tool()) {
       const thintool::ToolStepReport& report = tool->report();
       const thintool::ToolDiagnostics& d = report.diagnostics;
@@ -411,20 +411,20 @@ PressResult runPress(const PressSettings& settings) {
   result.steps = moveSteps + holdSteps;
   result.microsecondsPerStep = wallMicroseconds / result.steps;
   result.toolMicrosecondsPerStep = toolMicroseconds / result.steps;
-  result.metrics = tracker.metrics();
+  result.metrics = truth.metrics();
   return result;
 }
 
 RunMetrics runTrajectory(SoftBallScene& scene, int steps, const std::function<btTransform(int)>& poseAt) {
   scene.step(poseAt(0));
   const std::vector<std::array<int, 3>> faces = faceIndices(scene.ball());
-  CrossingTracker tracker;
-  tracker.start(scene.toolBox(), nodePositions(scene.ball()), faces);
+  BoxGroundTruth truth;
+  truth.start(scene.toolBox(), nodePositions(scene.ball()), faces);
   for (int i = 1; i <= steps; ++i) {
     scene.step(poseAt(i));
-    tracker.update(scene.toolBox(), nodePositions(scene.ball()), faces);
+    truth.update(scene.toolBox(), nodePositions(scene.ball()), faces);
   }
-  return tracker.metrics();
+  return truth.metrics();
 }
 
 }  // namespace thintool::scenes

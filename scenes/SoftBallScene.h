@@ -154,7 +154,7 @@ std::vector<Point> nodePositions(const btSoftBody& ball);
 std::vector<std::array<int, 3>> faceIndices(const btSoftBody& ball);
 
 /// Drives the tool of a settled scene through poseAt(step) for steps steps, tracking the ball's
-/// nodes against the tool; the tracker starts at pose 0.
+/// nodes against the tool; the ground truth starts at pose 0.
 RunMetrics runTrajectory(SoftBallScene& scene, int steps, const std::function<btTransform(int)>& poseAt);
 
 }  // namespace thintool::scenes

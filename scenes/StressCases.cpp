@@ -376,8 +376,8 @@ StressOutcome runStressCase(const StressCase& stressCase) {
 
   scene.step(start);
   const std::vector<std::array<int, 3>> faces = faceIndices(scene.ball());
-  CrossingTracker tracker;
-  tracker.start(scene.toolBox(), nodePositions(scene.ball()), faces);
+  BoxGroundTruth truth;
+  truth.start(scene.toolBox(), nodePositions(scene.ball()), faces);
   btTransform pose = start;
   double wallMicroseconds = 0;
   for (int i = 1; i <= moveSteps + holdSteps; ++i) {
@@ -400,7 +400,7 @@ StressOutcome runStressCase(const StressCase& stressCase) {
     if (finite(scene.toolBody().getWorldTransform())) {
       const ToolBox box = scene.toolBox();
       const std::vector<Point> nodes = nodePositions(scene.ball());
-      tracker.update(box, nodes, faces);
+      truth.update(box, nodes, faces);
       out.deepestInside = std::max(out.deepestInside, deepestInside(box, nodes));
     }
     out.finite = out.finite && sceneIsFinite(scene);
@@ -423,7 +423,7 @@ StressOutcome runStressCase(const StressCase& stressCase) {
     ++out.steps;
   }
   out.energyBounded = out.holdEnergyLast <= kEnergyTolerance * out.holdEnergyFirst + kEnergyFloor;
-  out.metrics = tracker.metrics();
+  out.metrics = truth.metrics();
   out.microsecondsPerStep = wallMicroseconds / out.steps;
   return out;
 }

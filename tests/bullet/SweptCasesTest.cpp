@@ -101,18 +101,18 @@ RunMetrics thrownSheet(btScalar& outHighest) {
   }
   const btScalar dt = btScalar(1) / 60;
   scene.soft.world.stepSimulation(dt, 1, dt);  // at rest: nothing near the plate
-  CrossingTracker tracker;
-  tracker.start(box, nodePositions(sheet), faces, false);
+  BoxGroundTruth truth;
+  truth.start(box, nodePositions(sheet), faces, false);
   sheet.setVelocity(btVector3(0, 15, 0));
   for (int step = 0; step < 10; ++step) {
     scene.soft.world.stepSimulation(dt, 1, dt);
-    tracker.update(box, nodePositions(sheet), faces);
+    truth.update(box, nodePositions(sheet), faces);
   }
   outHighest = -BT_LARGE_FLOAT;
   for (int i = 0; i < sheet.m_nodes.size(); ++i) {
     outHighest = btMax(outHighest, sheet.m_nodes[i].m_x.y());
   }
-  return tracker.metrics();
+  return truth.metrics();
 }
 
 TEST(SweptCases, ASheetThrownThroughAStillToolInOneStepIsCaught) {
