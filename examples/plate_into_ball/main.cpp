@@ -92,7 +92,8 @@ int main(int argc, char** argv) {
   }
 
   std::printf("%s into a 128-face soft ball: stock Bullet 3.24 against ThinTool\n\n", toolShapeName(shape));
-  std::printf("| algorithm | dt | speed (m/s) | crossed | pierced steps | tool inside | max pen. (mm) | us/step | tool us/step |\n");
+  std::printf("| algorithm | dt | speed (m/s) | crossed | pierced steps | tool inside | max pen. (mm) | us/step "
+              "| tool us/step |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|\n");
   const Algorithm algorithms[] = {Algorithm::StockA, Algorithm::StockB, Algorithm::StockE, Algorithm::ThinToolPaper,
                                   Algorithm::ThinTool};
@@ -111,8 +112,8 @@ int main(int argc, char** argv) {
           std::snprintf(toolTime, sizeof toolTime, "%.1f", r.toolMicrosecondsPerStep);
         }
         std::printf("| %s | 1/%g | %g | %d | %d | %s | %.2f | %.1f | %s |\n", algorithmName(algorithm), rate, speed,
-                    m.crossed, m.piercedSteps, m.everInside ? "YES" : "no", 1000 * m.maxPenetration, r.microsecondsPerStep,
-                    toolTime);
+                    m.crossed, m.piercedSteps, m.everInside ? "YES" : "no", 1000 * m.maxPenetration,
+                    r.microsecondsPerStep, toolTime);
         std::fflush(stdout);
       }
     }
