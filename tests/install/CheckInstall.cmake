@@ -1,6 +1,7 @@
-# Installs ThinTool to a fresh prefix and builds examples/minimal against the installed package
-# with find_package(ThinTool), and again with the compiler and pkg-config's thintool module alone,
-# and runs both; where the package has the haptic layer, does the same with tests/install/haptics
+# Installs ThinTool to a fresh prefix, checks that a shared library exports its API and not the
+# stages' insides, and builds examples/minimal against the installed package with
+# find_package(ThinTool), and again with the compiler and pkg-config's thintool module alone, and
+# runs both; where the package has the haptic layer, does the same with tests/install/haptics
 # (ThinTool::haptics, pkg-config's thintool-haptics). Invoked by CTest:
 #   cmake -DSOURCE_DIR=... -DWORK_DIR=... -DSHARED=ON|OFF [-DBUILD_DIR=<built tree to install>]
 #         [-DBULLET_DOUBLE=ON|OFF] -P CheckInstall.cmake
@@ -32,6 +33,30 @@ else()
 endif()
 if(NOT libraries)
   message(FATAL_ERROR "the installed prefix has no ThinTool library of the expected kind (shared=${SHARED})")
+endif()
+
+# A shared library exports the API (THINTOOL_API) and hides the stages' insides.
+if(SHARED)
+  find_program(NM NAMES nm REQUIRED)
+  list(GET libraries 0 library)
+  execute_process(COMMAND ${NM} -D -C --defined-only ${library} RESULT_VARIABLE result OUTPUT_VARIABLE symbols
+                  ERROR_VARIABLE symbols)
+  if(NOT result EQUAL 0)
+    message(FATAL_ERROR "nm could not read ${library}: ${symbols}")
+  endif()
+  foreach(api IN ITEMS "thintool::addTool" "thintool::SoftBodySolver::SoftBodySolver" "typeinfo for thintool::Error")
+    string(FIND "${symbols}" "${api}" at)
+    if(at LESS 0)
+      message(FATAL_ERROR "${library} does not export ${api}")
+    endif()
+  endforeach()
+  foreach(internal IN ITEMS "thintool::detectSwept" "thintool::computeResponse" "thintool::separateFromPiece")
+    string(FIND "${symbols}" "${internal}" at)
+    if(NOT at LESS 0)
+      message(FATAL_ERROR "${library} exports ${internal}, which is no part of the API")
+    endif()
+  endforeach()
+  message(STATUS "${library} exports the API and hides the stages")
 endif()
 
 set(consumer ${WORK_DIR}/minimal)

@@ -13,6 +13,7 @@
 
 #include <thintool/bullet/Tool.h>
 #include <thintool/bullet/ToolOptions.h>
+#include <thintool/core/Api.h>
 
 #include <LinearMath/btTransform.h>
 
@@ -50,7 +51,7 @@ struct ClampForces {
   Real grip = 0;
 };
 
-class Clamp {
+class THINTOOL_API Clamp {
  public:
   /// Adds the handle and the jaws to world (a btSoftRigidDynamicsWorld built on
   /// thintool::CollisionConfiguration) at handlePose, opened by opening radians. Throws

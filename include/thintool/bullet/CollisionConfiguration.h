@@ -20,6 +20,7 @@
 /// dispatcher runs; use the single-threaded btCollisionDispatcher.
 
 #include <thintool/bullet/Tool.h>
+#include <thintool/core/Api.h>
 
 #include <BulletSoftBody/btSoftBodyRigidBodyCollisionConfiguration.h>
 
@@ -43,7 +44,7 @@ class CollisionPass;
 void beginCollisionPass(btCollisionWorld& world);
 }  // namespace detail
 
-class CollisionConfiguration : public btSoftBodyRigidBodyCollisionConfiguration {
+class THINTOOL_API CollisionConfiguration : public btSoftBodyRigidBodyCollisionConfiguration {
  public:
   /// Grows info's m_customCollisionAlgorithmMaxElementSize to fit ThinTool's algorithm: Bullet's
   /// pool only asserts the size, so a release build would overrun its slots otherwise.
@@ -95,14 +96,14 @@ class CollisionConfiguration : public btSoftBodyRigidBodyCollisionConfiguration 
 /// as its motion state gave it; a dynamic tool at its pose at the start of the step, as Bullet's
 /// stock handler meets it, and it receives the tissue's reaction as impulses. Throws
 /// thintool::Error naming the tool and the problem.
-Tool& addTool(btCollisionWorld& world, btCollisionObject& body, const ToolOptions& options = ToolOptions());
+THINTOOL_API Tool& addTool(btCollisionWorld& world, btCollisionObject& body, const ToolOptions& options = ToolOptions());
 
 /// Unregisters body from world's configuration; returns whether it was a tool. Call it before
 /// deleting a tool's body.
-bool removeTool(btCollisionWorld& world, const btCollisionObject& body);
+THINTOOL_API bool removeTool(btCollisionWorld& world, const btCollisionObject& body);
 
 /// The tool registered for body, or nullptr (also in a world built without ThinTool's
 /// configuration).
-Tool* findTool(btCollisionWorld& world, const btCollisionObject& body);
+THINTOOL_API Tool* findTool(btCollisionWorld& world, const btCollisionObject& body);
 
 }  // namespace thintool

@@ -25,6 +25,7 @@
 /// prediction of the next step, what that body's forces add to them. Tool::report()
 /// says what the stages did and what they left (ToolDiagnostics::lastWord).
 
+#include <thintool/core/Api.h>
 #include <thintool/response/Separation.h>
 
 #include <BulletSoftBody/btDefaultSoftBodySolver.h>
@@ -39,7 +40,7 @@ namespace thintool {
 class CollisionConfiguration;
 class Tool;
 
-class SoftBodySolver : public btDefaultSoftBodySolver {
+class THINTOOL_API SoftBodySolver : public btDefaultSoftBodySolver {
  public:
   /// configuration: the world's, whose tools get the last word; it must outlive the solver.
   explicit SoftBodySolver(CollisionConfiguration& configuration);

@@ -6,6 +6,7 @@
 /// A registered tool: its model, its state across steps, and what happened in the latest step.
 
 #include <thintool/bullet/ToolOptions.h>
+#include <thintool/core/Api.h>
 #include <thintool/detection/Detection.h>
 #include <thintool/detection/SweptDetection.h>
 #include <thintool/response/Response.h>
@@ -146,7 +147,7 @@ class SweptProxy;
 }  // namespace detail
 
 /// Created by addTool(); owned by the world's thintool::CollisionConfiguration.
-class Tool {
+class THINTOOL_API Tool {
  public:
   Tool(btCollisionObject& body, const ToolOptions& options, std::vector<ToolModel> pieces,
        std::vector<Pose> pieceTransforms);

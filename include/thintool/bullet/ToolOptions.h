@@ -6,6 +6,7 @@
 /// Everything a tool can be told, grouped by pipeline stage. The defaults suit the paper's scene
 /// (a 0.8 × 0.02 × 0.8 m plate into a 128-face ball of radius 1 m) and scale with the tool's size.
 
+#include <thintool/core/Api.h>
 #include <thintool/detection/Detection.h>
 #include <thintool/force/ContactForce.h>
 #include <thintool/response/Response.h>
@@ -154,6 +155,6 @@ struct ToolOptions {
 };
 
 /// Describes the first invalid option, or returns an empty string.
-std::string validateToolOptions(const ToolOptions& options);
+THINTOOL_API std::string validateToolOptions(const ToolOptions& options);
 
 }  // namespace thintool

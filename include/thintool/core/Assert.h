@@ -10,6 +10,8 @@
 /// option, on in Debug builds and in the test script's sanitizer stage), and a failed one calls a
 /// handler the program can set.
 
+#include <thintool/core/Api.h>
+
 namespace thintool {
 
 /// Called with the failed condition's text and where it is. The default handler prints them to
@@ -18,14 +20,14 @@ using AssertHandler = void (*)(const char* condition, const char* file, int line
 
 /// Sets the handler failed checks call (nullptr: the default) and returns the one it replaces.
 /// Not thread-safe: set it before stepping.
-AssertHandler setAssertHandler(AssertHandler handler);
+THINTOOL_API AssertHandler setAssertHandler(AssertHandler handler);
 
 /// Whether the library itself was built with its checks (THINTOOL_ASSERTS).
-bool libraryChecksAsserts();
+THINTOOL_API bool libraryChecksAsserts();
 
 namespace detail {
 /// Calls the handler set by setAssertHandler.
-void assertFailed(const char* condition, const char* file, int line);
+THINTOOL_API void assertFailed(const char* condition, const char* file, int line);
 }  // namespace detail
 
 }  // namespace thintool

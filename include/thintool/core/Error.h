@@ -2,6 +2,8 @@
 // Copyright (c) 2026 The ThinTool developers
 #pragma once
 
+#include <thintool/core/Api.h>
+
 #include <stdexcept>
 #include <string>
 
@@ -11,7 +13,7 @@ namespace thintool {
 /// options, a world without ThinTool's collision configuration. The message names the tool and
 /// the problem. Nothing on the per-step path throws: bad data met while stepping is skipped and
 /// counted in the step's diagnostics instead.
-class Error : public std::runtime_error {
+class THINTOOL_API Error : public std::runtime_error {
  public:
   explicit Error(const std::string& message) : std::runtime_error(message) {}
 };

@@ -7,6 +7,7 @@
 /// seconds and newtons, in the device's own frame. Part of the optional haptics library; the core
 /// library knows nothing of devices.
 
+#include <thintool/core/Api.h>
 #include <thintool/core/Math.h>
 
 #include <cstdint>
@@ -25,7 +26,7 @@ struct DeviceLimits {
   Real physicalDamping = 0;  ///< N·s/m, the device's own damping, if known (0: assume none)
 };
 
-class Device {
+class THINTOOL_API Device {
  public:
   virtual ~Device() = default;
   virtual std::string name() const = 0;

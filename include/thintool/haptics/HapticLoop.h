@@ -11,6 +11,7 @@
 /// The same tick runs synchronously through tick(), for tests and for replays run as fast as
 /// possible, where the loop's clock is the tick count times the period.
 
+#include <thintool/core/Api.h>
 #include <thintool/haptics/Device.h>
 #include <thintool/haptics/VirtualCoupling.h>
 
@@ -57,7 +58,7 @@ struct LoopStatistics {
   std::size_t clampedTicks = 0;  ///< ticks whose force was clamped to the device's limit
 };
 
-class HapticLoop {
+class THINTOOL_API HapticLoop {
  public:
   HapticLoop(Device& device, const HapticLoopSettings& settings);
   ~HapticLoop();

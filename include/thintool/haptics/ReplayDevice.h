@@ -9,6 +9,7 @@
 /// interpolated linearly; buttons keep the earlier row's value. The forces written to it are kept,
 /// so that a replay can be compared with the recording's run.
 
+#include <thintool/core/Api.h>
 #include <thintool/haptics/Device.h>
 
 #include <iosfwd>
@@ -17,7 +18,7 @@
 
 namespace thintool::haptics {
 
-class ReplayDevice final : public Device {
+class THINTOOL_API ReplayDevice final : public Device {
  public:
   /// Reads a trajectory; throws thintool::Error naming the file, line and field of the first problem.
   static ReplayDevice fromFile(const std::string& path);

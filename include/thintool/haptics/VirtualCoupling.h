@@ -16,6 +16,7 @@
 /// b > K·T/2 + |B| with b the device's own damping, is stricter and needs a b that a Falcon does not
 /// have; it is reported too, as a fact about the device, not enforced.
 
+#include <thintool/core/Api.h>
 #include <thintool/core/Math.h>
 
 namespace thintool::haptics {
@@ -32,15 +33,15 @@ struct CouplingCheck {
   Real minimumDamping = 0;  ///< K·T/2 (N·s/m)
 };
 
-CouplingCheck checkStability(const CouplingSettings& coupling, Real samplePeriod, Real deviceDamping);
+THINTOOL_API CouplingCheck checkStability(const CouplingSettings& coupling, Real samplePeriod, Real deviceDamping);
 
 /// Force on the device (N), clamped to maxForce: K·(tool − device) + B·(toolVelocity − deviceVelocity).
 /// The tool feels the opposite, unclamped.
-Vec3 couplingForce(const CouplingSettings& coupling, const Vec3& devicePosition, const Vec3& deviceVelocity,
+THINTOOL_API Vec3 couplingForce(const CouplingSettings& coupling, const Vec3& devicePosition, const Vec3& deviceVelocity,
                    const Vec3& toolPosition, const Vec3& toolVelocity);
 
 /// The same force before the clamp.
-Vec3 couplingForceUnclamped(const CouplingSettings& coupling, const Vec3& devicePosition,
+THINTOOL_API Vec3 couplingForceUnclamped(const CouplingSettings& coupling, const Vec3& devicePosition,
                             const Vec3& deviceVelocity, const Vec3& toolPosition, const Vec3& toolVelocity);
 
 }  // namespace thintool::haptics
