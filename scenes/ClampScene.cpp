@@ -35,11 +35,10 @@ Body bodyOf(ClampBody kind) {
   return kind == ClampBody::Sphere ? Body{btVector3(1, 1, 1), 63} : Body{btVector3(1.5, 0.35, 0.35), 120};
 }
 
-// A jaw as the metrics' box, with its y axis pointing away from the tissue.
-ToolBox jawBox(const btTransform& pose, const Vec3& half, bool flip) {
+// A jaw as the ground truth's box.
+ToolBox jawBox(const btTransform& pose, const Vec3& half) {
   ToolBox box;
-  const btMatrix3x3 basis = flip ? pose.getBasis() * btMatrix3x3(btQuaternion(btVector3(1, 0, 0), btScalar(kPi)))
-                                 : pose.getBasis();
+  const btMatrix3x3& basis = pose.getBasis();
   for (int i = 0; i < 3; ++i) box.rotationRows[i] = {basis[i].x(), basis[i].y(), basis[i].z()};
   box.origin = {pose.getOrigin().x(), pose.getOrigin().y(), pose.getOrigin().z()};
   box.halfExtents = {half.x, half.y, half.z};
@@ -171,8 +170,8 @@ ClampSample ClampStage::step(const btTransform& pose, double opening, const std:
 
 std::array<ToolBox, 2> ClampStage::boxes() {
   return std::array<ToolBox, 2>{
-      jawBox(m_clamp->jawBody(0).getWorldTransform(), m_clampSettings.jawHalfExtents, false),
-      jawBox(m_clamp->jawBody(1).getWorldTransform(), m_clampSettings.jawHalfExtents, true)};
+      jawBox(m_clamp->jawBody(0).getWorldTransform(), m_clampSettings.jawHalfExtents),
+      jawBox(m_clamp->jawBody(1).getWorldTransform(), m_clampSettings.jawHalfExtents)};
 }
 
 const char* clampBodyName(ClampBody body) { return body == ClampBody::Sphere ? "sphere" : "vessel"; }

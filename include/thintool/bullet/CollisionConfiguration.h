@@ -96,7 +96,8 @@ class THINTOOL_API CollisionConfiguration : public btSoftBodyRigidBodyCollisionC
 /// as its motion state gave it; a dynamic tool at its pose at the start of the step, as Bullet's
 /// stock handler meets it, and it receives the tissue's reaction as impulses. Throws
 /// thintool::Error naming the tool and the problem.
-THINTOOL_API Tool& addTool(btCollisionWorld& world, btCollisionObject& body, const ToolOptions& options = ToolOptions());
+THINTOOL_API Tool& addTool(btCollisionWorld& world, btCollisionObject& body,
+                           const ToolOptions& options = ToolOptions());
 
 /// Unregisters body from world's configuration; returns whether it was a tool. Call it before
 /// deleting a tool's body.

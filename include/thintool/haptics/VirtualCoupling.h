@@ -37,11 +37,12 @@ THINTOOL_API CouplingCheck checkStability(const CouplingSettings& coupling, Real
 
 /// Force on the device (N), clamped to maxForce: K·(tool − device) + B·(toolVelocity − deviceVelocity).
 /// The tool feels the opposite, unclamped.
-THINTOOL_API Vec3 couplingForce(const CouplingSettings& coupling, const Vec3& devicePosition, const Vec3& deviceVelocity,
-                   const Vec3& toolPosition, const Vec3& toolVelocity);
+THINTOOL_API Vec3 couplingForce(const CouplingSettings& coupling, const Vec3& devicePosition,
+                                const Vec3& deviceVelocity, const Vec3& toolPosition, const Vec3& toolVelocity);
 
 /// The same force before the clamp.
 THINTOOL_API Vec3 couplingForceUnclamped(const CouplingSettings& coupling, const Vec3& devicePosition,
-                            const Vec3& deviceVelocity, const Vec3& toolPosition, const Vec3& toolVelocity);
+                                         const Vec3& deviceVelocity, const Vec3& toolPosition,
+                                         const Vec3& toolVelocity);
 
 }  // namespace thintool::haptics
