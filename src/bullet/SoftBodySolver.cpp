@@ -69,6 +69,14 @@ Aabb sweptBounds(const Aabb& local, const PieceMotion& motion) {
   return box.expanded(radius * (1 - std::cos(motion.turn() / (2 * motion.samples()))));
 }
 
+// Whether a node's move from a to b meets the box: the box of the move does.
+bool segmentMeets(const Aabb& box, const btVector3& a, const btVector3& b) {
+  for (int axis = 0; axis < 3; ++axis) {
+    if (Real(btMax(a[axis], b[axis])) < box.min[axis] || Real(btMin(a[axis], b[axis])) > box.max[axis]) return false;
+  }
+  return true;
+}
+
 // Mass, kinetic energy and momentum of a soft body's free nodes, each at the velocity velocityOf
 // gives it.
 struct BodyMotion {
@@ -380,6 +388,16 @@ void SoftBodySolver::solveConstraints(btScalar timeStep) {
       m_dynamicToolsActive = m_dynamicToolsActive || reactingBody(*tool) != nullptr;
     }
   }
+  m_stepReach = Aabb{};
+  for (Tool* tool : tools) {
+    const Pose now = toPose(tool->body().getWorldTransform());
+    const Pose before = stepStart(*tool, now);
+    for (Index p = 0; p < tool->pieceCount(); ++p) {
+      const PieceMotion motion(before, now, tool->m_options.separation.maxTurnPerSample, tool->pieceTransform(p));
+      m_stepReach.include(sweptBounds(tool->piece(p).bounds, motion).expanded(tool->m_options.separation.clearance));
+    }
+  }
+  m_hasStepReach = !tools.empty() && isFinite(m_stepReach.min) && isFinite(m_stepReach.max);
   // One piece's moves can push soft features into another (two jaws, two tools): the pieces take
   // turns until a pass moves nothing, or a pass had a single piece near soft features. Pieces
   // still pushing faces into each other after the last pass leave them to the last resort, which
@@ -395,6 +413,7 @@ void SoftBodySolver::solveConstraints(btScalar timeStep) {
       for (Tool* tool : tools) separate(*tool, true);
     }
   }
+  m_hasStepReach = false;
   const auto guardStart = Clock::now();
   guardEnergy();
   const auto guardEnd = Clock::now();
@@ -641,6 +660,7 @@ SoftBodySolver::SoftBodyCache& SoftBodySolver::cacheOf(const btSoftBody& softBod
   const auto faceCount = static_cast<Index>(softBody.m_faces.size());
   if (m_faceInPatch.size() < faceCount) m_faceInPatch.resize(faceCount, 0);
   if (m_vertexOfNode.size() < nodeCount) m_vertexOfNode.resize(nodeCount, kInvalidIndex);
+  if (m_isNearNode.size() < nodeCount) m_isNearNode.resize(nodeCount, 0);
   const void* nodes = nodeCount > 0 ? static_cast<const void*>(&softBody.m_nodes[0]) : nullptr;
   const void* faceArray = faceCount > 0 ? static_cast<const void*>(&softBody.m_faces[0]) : nullptr;
   if (cache.nodeCount != nodeCount || cache.faceCount != faceCount || cache.nodes != nodes ||
@@ -662,10 +682,14 @@ SoftBodySolver::SoftBodyCache& SoftBodySolver::cacheOf(const btSoftBody& softBod
     for (Index n = 0; n < nodeCount; ++n) cache.begin[n + 1] += cache.begin[n];
     cache.closed = surfaceIsClosed(softBody);
     cache.faces.resize(cache.begin[nodeCount]);
+    cache.faceNodes.resize(faceCount);
     std::vector<Index> filled(cache.begin.begin(), cache.begin.end() - 1);
     for (Index f = 0; f < faceCount; ++f) {
-      for (const btSoftBody::Node* node : softBody.m_faces[static_cast<int>(f)].m_n) {
-        cache.faces[filled[static_cast<Index>(node - first)]++] = f;
+      const btSoftBody::Face& face = softBody.m_faces[static_cast<int>(f)];
+      for (int k = 0; k < 3; ++k) {
+        const auto node = static_cast<Index>(face.m_n[k] - first);
+        cache.faceNodes[f][static_cast<std::size_t>(k)] = node;
+        cache.faces[filled[node]++] = f;
       }
     }
   }
@@ -686,6 +710,14 @@ void SoftBodySolver::surveyNodes(SoftBodyCache& cache, const btSoftBody& softBod
   btVector3 lowest(BT_LARGE_FLOAT, BT_LARGE_FLOAT, BT_LARGE_FLOAT);
   btVector3 highest = -lowest;
   cache.pinned.clear();
+  cache.candidatesHold = false;
+  for (const Index id : cache.candidates) cache.isCandidate[id] = 0;
+  cache.candidates.clear();
+  cache.candidatesSorted = true;
+  cache.isCandidate.resize(cache.nodeCount, 0);
+  const Real candidateReach = 2 * cache.measuredReach + Real(1e-9);
+  const bool collect = m_hasStepReach && cache.measuredReach >= 0;
+  const Aabb wanted = m_stepReach.expanded(collect ? candidateReach : 0);
   for (int i = 0; i < softBody.m_nodes.size(); ++i) {
     const btSoftBody::Node& node = softBody.m_nodes[i];
     if (m_dynamicToolsActive && !(node.m_im > 0)) cache.pinned.push_back(static_cast<Index>(i));
@@ -696,29 +728,35 @@ void SoftBodySolver::surveyNodes(SoftBodyCache& cache, const btSoftBody& softBod
     lowest.setMin(node.m_q);
     highest.setMax(node.m_x);
     highest.setMax(node.m_q);
+    if (collect && segmentMeets(wanted, node.m_q, node.m_x)) {
+      cache.candidates.push_back(static_cast<Index>(i));
+      cache.isCandidate[static_cast<Index>(i)] = 1;
+    }
   }
   // A node that is not finite escapes the box; the gather then looks at every node, as it must.
   cache.boundsHold = finite;
   cache.bounds = Aabb{toVec3(lowest), toVec3(highest)};
   if (cache.measuredReach >= 0) {
     cache.faceReach += 2 * Real(btSqrt(farthest));
-    if (cache.faceReach <= 2 * cache.measuredReach + Real(1e-9)) return;
+    cache.candidatesHold = collect && finite;
+    if (cache.faceReach <= candidateReach) return;
   }
   Real reach = 0;
-  for (int f = 0; f < softBody.m_faces.size(); ++f) {
-    const btSoftBody::Face& face = softBody.m_faces[f];
-    btVector3 low = face.m_n[0]->m_x;
+  for (const std::array<Index, 3>& corners : cache.faceNodes) {
+    btVector3 low = softBody.m_nodes[static_cast<int>(corners[0])].m_x;
     btVector3 high = low;
-    for (const btSoftBody::Node* node : face.m_n) {
-      low.setMin(node->m_x);
-      low.setMin(node->m_q);
-      high.setMax(node->m_x);
-      high.setMax(node->m_q);
+    for (const Index n : corners) {
+      const btSoftBody::Node& node = softBody.m_nodes[static_cast<int>(n)];
+      low.setMin(node.m_x);
+      low.setMin(node.m_q);
+      high.setMax(node.m_x);
+      high.setMax(node.m_q);
     }
     reach = std::max(reach, Real((high - low).length()));
   }
   cache.measuredReach = reach;
   cache.faceReach = reach;
+  cache.candidatesHold = cache.candidatesHold && reach <= candidateReach;
 }
 
 void SoftBodySolver::stopAtPinnedNodes(btRigidBody& tool, const ToolModel& piece, const Pose& pieceEnd,
@@ -770,15 +808,13 @@ Index SoftBodySolver::patchVertexOf(const btSoftBody& softBody, Index node) {
   return vertex;
 }
 
-void SoftBodySolver::addPatchFace(const btSoftBody& softBody, Index f) {
+void SoftBodySolver::addPatchFace(const btSoftBody& softBody, const SoftBodyCache& cache, Index f) {
   if (m_faceInPatch[f] != 0) return;
   m_faceInPatch[f] = 1;
   m_patchFaces.push_back(f);
-  const btSoftBody::Face& face = softBody.m_faces[static_cast<int>(f)];
-  const btSoftBody::Node* first = &softBody.m_nodes[0];
-  m_patch.faces.push_back({patchVertexOf(softBody, static_cast<Index>(face.m_n[0] - first)),
-                           patchVertexOf(softBody, static_cast<Index>(face.m_n[1] - first)),
-                           patchVertexOf(softBody, static_cast<Index>(face.m_n[2] - first))});
+  const std::array<Index, 3>& corners = cache.faceNodes[f];
+  m_patch.faces.push_back(
+      {patchVertexOf(softBody, corners[0]), patchVertexOf(softBody, corners[1]), patchVertexOf(softBody, corners[2])});
 }
 
 // A move can carry a node's other faces into the tool, faces the gather had no reason to take:
@@ -805,7 +841,7 @@ SeparationCounts SoftBodySolver::separateGrowingPatch(Tool& tool, const ToolMode
       const Index node = m_patch.nodeIds[v];
       for (Index k = cache.begin[node]; k < cache.begin[node + 1]; ++k) {
         if (m_faceInPatch[cache.faces[k]] == 2) m_faceInPatch[cache.faces[k]] = 0;  // looked at, away: take it now
-        addPatchFace(softBody, cache.faces[k]);
+        addPatchFace(softBody, cache, cache.faces[k]);
       }
     }
     if (m_patchFaces.size() == facesBefore) break;
@@ -873,38 +909,47 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
     if (dynamicTool != nullptr) stopAtPinnedNodes(*dynamicTool, piece, motion.end(), inverseStep, cache, softBody);
     return {};
   }
-  const auto meets = [](const Aabb& box, const btVector3& a, const btVector3& b) {
-    for (int axis = 0; axis < 3; ++axis) {
-      if (Real(btMax(a[axis], b[axis])) < box.min[axis] || Real(btMin(a[axis], b[axis])) > box.max[axis]) return false;
-    }
-    return true;
+  const auto gatherNode = [&](Index i) {
+    const btSoftBody::Node& node = softBody.m_nodes[static_cast<int>(i)];
+    if (!segmentMeets(grown, node.m_q, node.m_x)) return;
+    m_nearNodes.push_back(i);
+    if (segmentMeets(swept, node.m_q, node.m_x)) patchVertexOf(softBody, i);
   };
-  for (int i = 0; i < nodeCount; ++i) {
-    const btSoftBody::Node& node = softBody.m_nodes[i];
-    if (!meets(grown, node.m_q, node.m_x)) continue;
-    m_nearNodes.push_back(static_cast<Index>(i));
-    if (meets(swept, node.m_q, node.m_x)) patchVertexOf(softBody, static_cast<Index>(i));
+  if (cache.candidatesHold) {
+    // In the nodes' order, as a walk over all of them would meet them: the patch, and so the
+    // stage's arithmetic, does not depend on how the gather found its nodes.
+    if (!cache.candidatesSorted) std::sort(cache.candidates.begin(), cache.candidates.end());
+    cache.candidatesSorted = true;
+    for (const Index i : cache.candidates) gatherNode(i);
+  } else {
+    for (Index i = 0; i < static_cast<Index>(nodeCount); ++i) gatherNode(i);
   }
   m_patchFaces.clear();
   // Faces looked at and found away are marked 2 for the rest of the gather, so each is boxed once.
-  for (Index node : m_nearNodes) {
+  // A face's box reaches no further than the face reach from any of its nodes: a face with a node
+  // that is not near cannot meet the piece's reach, and is not boxed.
+  for (const Index node : m_nearNodes) m_isNearNode[node] = 1;
+  for (const Index node : m_nearNodes) {
     for (Index k = cache.begin[node]; k < cache.begin[node + 1]; ++k) {
       const Index f = cache.faces[k];
       if (m_faceInPatch[f] != 0) continue;
-      const btSoftBody::Face& face = softBody.m_faces[static_cast<int>(f)];
+      const std::array<Index, 3>& corners = cache.faceNodes[f];
+      if (m_isNearNode[corners[0]] == 0 || m_isNearNode[corners[1]] == 0 || m_isNearNode[corners[2]] == 0) continue;
       Aabb box;
-      for (const btSoftBody::Node* n : face.m_n) {
-        box.include(toVec3(n->m_x));
-        box.include(toVec3(n->m_q));
+      for (const Index n : corners) {
+        const btSoftBody::Node& corner = softBody.m_nodes[static_cast<int>(n)];
+        box.include(toVec3(corner.m_x));
+        box.include(toVec3(corner.m_q));
       }
       if (swept.overlaps(box)) {
-        addPatchFace(softBody, f);
+        addPatchFace(softBody, cache, f);
       } else {
         m_faceInPatch[f] = 2;
         m_patchFaces.push_back(f);
       }
     }
   }
+  for (const Index node : m_nearNodes) m_isNearNode[node] = 0;
   if (m_patch.vertexCount() == 0) {
     for (Index f : m_patchFaces) m_faceInPatch[f] = 0;
     if (dynamicTool != nullptr) stopAtPinnedNodes(*dynamicTool, piece, motion.end(), inverseStep, cache, softBody);
@@ -931,6 +976,11 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
     m_vertexOfNode[id] = kInvalidIndex;
     if (m_patch.moved[v] == 0 || !isFinite(m_patch.positions[v])) {
       continue;
+    }
+    if (cache.candidatesHold && cache.isCandidate[id] == 0) {
+      cache.isCandidate[id] = 1;
+      cache.candidates.push_back(id);
+      cache.candidatesSorted = false;
     }
     btSoftBody::Node& node = softBody.m_nodes[static_cast<int>(id)];
     const btVector3 moved = toBt(m_patch.positions[v]);

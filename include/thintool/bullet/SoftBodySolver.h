@@ -30,6 +30,7 @@
 
 #include <BulletSoftBody/btDefaultSoftBodySolver.h>
 
+#include <array>
 #include <vector>
 
 class btRigidBody;
@@ -96,6 +97,7 @@ class THINTOOL_API SoftBodySolver : public btDefaultSoftBodySolver {
     const void* faceArray = nullptr;
     std::vector<Index> begin;
     std::vector<Index> faces;
+    std::vector<std::array<Index, 3>> faceNodes;  // each face's nodes, read without Bullet's face records
     // Every edge of the faces is shared by exactly two of them: the surface bounds a volume, and
     // whether a tool piece lies inside it has an answer (the winding number).
     bool closed = false;
@@ -107,6 +109,16 @@ class THINTOOL_API SoftBodySolver : public btDefaultSoftBodySolver {
     bool boundsHold = false;
     // The pinned nodes (zero inverse mass), listed in steps where a dynamic tool takes reactions.
     std::vector<Index> pinned;
+    // The nodes the step's gathers can want, so that each gather looks at these, not at every
+    // node: those whose move this step meets the step's reach grown by twice the measured face
+    // reach (what faceReach can grow to before it is measured again), and those the last word has
+    // moved since. Kept in the order of the body's nodes when a gather reads them. Without a
+    // measure to grow from, or after one that outgrew it, candidatesHold is false and the gathers
+    // look at every node.
+    std::vector<Index> candidates;
+    std::vector<unsigned char> isCandidate;  // per node
+    bool candidatesHold = false;
+    bool candidatesSorted = true;
     // The bound on what the body's forces add to a node's velocity in the step after boundStep
     // (EnergyGuardSettings::boundForcesNextStep), m/s per axis: the larger of speedFactor times
     // the fastest node, tool corner or restingSpeed, and, in a grasp, the body's extent over the step.
@@ -126,8 +138,8 @@ class THINTOOL_API SoftBodySolver : public btDefaultSoftBodySolver {
                              const SoftBodyCache& cache, bool alone, SeparationCounts& counts);
   // The patch's vertex of a soft node, added with the node when absent; a soft face, added once.
   Index patchVertexOf(const btSoftBody& softBody, Index node);
-  void addPatchFace(const btSoftBody& softBody, Index f);
-  // Once a step: the face reach, and the box of the body's nodes.
+  void addPatchFace(const btSoftBody& softBody, const SoftBodyCache& cache, Index f);
+  // Once a step: the face reach, the box of the body's nodes, and the gathers' candidates.
   void surveyNodes(SoftBodyCache& cache, const btSoftBody& softBody);
   // The soft body's pinned nodes stop the dynamic tool that carries the piece short of them.
   void stopAtPinnedNodes(btRigidBody& tool, const ToolModel& piece, const Pose& pieceEnd, Real inverseStep,
@@ -162,6 +174,11 @@ class THINTOOL_API SoftBodySolver : public btDefaultSoftBodySolver {
   std::vector<SoftBodyCache> m_caches;
   std::vector<BodyEnergy> m_energy;  // one per soft body of the world, this step
   std::vector<Index> m_nearNodes;  // soft nodes near the piece's reach grown by the face reach
+  std::vector<unsigned char> m_isNearNode;  // soft node -> whether m_nearNodes has it, during a gather
+  // Every active tool's pieces, swept over this step and grown by their clearance; hasStepReach is
+  // false until the step's tools are known.
+  Aabb m_stepReach;
+  bool m_hasStepReach = false;
   // soft node -> its contact in the soft body's m_rcontacts with a static or kinematic body, -1 for
   // none; filled only while a dynamic tool takes the reaction of moved nodes
   std::vector<int> m_backingOfNode;
