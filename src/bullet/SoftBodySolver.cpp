@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 namespace thintool {
@@ -75,6 +76,16 @@ bool segmentMeets(const Aabb& box, const btVector3& a, const btVector3& b) {
     if (Real(btMax(a[axis], b[axis])) < box.min[axis] || Real(btMin(a[axis], b[axis])) > box.max[axis]) return false;
   }
   return true;
+}
+
+// The nearest of Bullet's scalars at or below v, and at or above it.
+btScalar roundedDown(Real v) {
+  const auto rounded = static_cast<btScalar>(v);
+  return Real(rounded) > v ? std::nextafter(rounded, -std::numeric_limits<btScalar>::infinity()) : rounded;
+}
+btScalar roundedUp(Real v) {
+  const auto rounded = static_cast<btScalar>(v);
+  return Real(rounded) < v ? std::nextafter(rounded, std::numeric_limits<btScalar>::infinity()) : rounded;
 }
 
 // Mass, kinetic energy and momentum of a soft body's free nodes, each at the velocity velocityOf
@@ -175,15 +186,24 @@ SoftBodySolver::SoftBodySolver(CollisionConfiguration& configuration) : m_config
 
 void SoftBodySolver::solveSoftBodies() {
   // As btDefaultSoftBodySolver::solveConstraints: every active body of the solver's set, in order.
+  // ThinTool's copy of Bullet's solve serves a body that tools hold, to measure the holds, and one
+  // the last word will look at, to survey it in the solve's last pass over its nodes.
   for (int i = 0; i < m_softBodySet.size(); ++i) {
     btSoftBody& body = *m_softBodySet[i];
     if (!body.isActive()) continue;
-    if (collectHolds(body)) {
-      solveMeasuringHolds(body);
+    if (collectHolds(body) || lastWordReaches(body)) {
+      solveInStages(body);
     } else {
       body.solveConstraints();
     }
   }
+}
+
+bool SoftBodySolver::lastWordReaches(const btSoftBody& body) const {
+  if (!m_hasStepReach) return false;
+  return std::any_of(m_active.begin(), m_active.end(), [&](const Tool* tool) {
+    return !detail::ignores(body, tool->body()) && detail::lastWordActsOn(detail::stockReason(body));
+  });
 }
 
 bool SoftBodySolver::collectHolds(btSoftBody& body) {
@@ -287,7 +307,7 @@ void SoftBodySolver::limitHoldReach(btSoftBody& body) {
   }
 }
 
-void SoftBodySolver::solveMeasuringHolds(btSoftBody& body) {
+void SoftBodySolver::solveInStages(btSoftBody& body) {
   // Bullet 3.24's btSoftBody::solveConstraints (btSoftBody.cpp), stage for stage and in its
   // arithmetic, so that a body solved here moves exactly as Bullet would move it.
   body.applyClusters(false);
@@ -340,10 +360,29 @@ void SoftBodySolver::solveMeasuringHolds(btSoftBody& body) {
       }
     }
     const btScalar velocityFactor = body.m_sst.isdt * (1 - config.kDP);
-    for (int i = 0; i < body.m_nodes.size(); ++i) {
-      btSoftBody::Node& node = body.m_nodes[i];
-      node.m_v = (node.m_x - node.m_q) * velocityFactor;
-      node.m_f = btVector3(0, 0, 0);
+    // This is the last pass over the nodes unless drift iterations or clusters follow, which move
+    // them again: the last word's survey of the body runs in it, on nodes already in cache, for
+    // the step the last word is about to read (m_step advances after the solve). The whole pass,
+    // Bullet's velocities in it, counts as the last word's time.
+    if (m_hasStepReach && config.diterations == 0 && body.m_clusters.size() == 0) {
+      const auto start = std::chrono::steady_clock::now();
+      SoftBodyCache& cache = topologyOf(body);
+      NodeSurvey survey = beginSurvey(cache, m_step + 1);
+      for (int i = 0; i < body.m_nodes.size(); ++i) {
+        btSoftBody::Node& node = body.m_nodes[i];
+        node.m_v = (node.m_x - node.m_q) * velocityFactor;
+        node.m_f = btVector3(0, 0, 0);
+        surveyNode(survey, cache, i, node.m_x, node.m_q, m_dynamicToolsActive && !(node.m_im > 0));
+      }
+      finishSurvey(survey, cache, body);
+      m_active.front()->m_lastWord.microseconds +=
+          std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+    } else {
+      for (int i = 0; i < body.m_nodes.size(); ++i) {
+        btSoftBody::Node& node = body.m_nodes[i];
+        node.m_v = (node.m_x - node.m_q) * velocityFactor;
+        node.m_f = btVector3(0, 0, 0);
+      }
     }
   }
   if (config.diterations > 0) {
@@ -376,8 +415,8 @@ void SoftBodySolver::solveConstraints(btScalar timeStep) {
     tool->m_holdWrench = Wrench{};
     tool->m_holdNodesShared = 0;
   }
-  solveSoftBodies();
-  ++m_step;
+  // The tools whose last word runs, and where their pieces reach, before Bullet's solve, which
+  // moves no tool: the solve surveys the bodies it solves for them.
   std::vector<Tool*>& tools = m_active;
   tools.clear();
   m_dynamicToolsActive = false;
@@ -398,6 +437,8 @@ void SoftBodySolver::solveConstraints(btScalar timeStep) {
     }
   }
   m_hasStepReach = !tools.empty() && isFinite(m_stepReach.min) && isFinite(m_stepReach.max);
+  solveSoftBodies();
+  ++m_step;
   // One piece's moves can push soft features into another (two jaws, two tools): the pieces take
   // turns until a pass moves nothing, or a pass had a single piece near soft features. Pieces
   // still pushing faces into each other after the last pass leave them to the last resort, which
@@ -649,6 +690,19 @@ SoftBodySolver::SoftBodyCache* SoftBodySolver::findCache(const btSoftBody& softB
 }
 
 SoftBodySolver::SoftBodyCache& SoftBodySolver::cacheOf(const btSoftBody& softBody) {
+  SoftBodyCache& cache = topologyOf(softBody);
+  if (cache.stepSeen != m_step) {
+    NodeSurvey survey = beginSurvey(cache, m_step);
+    for (int i = 0; i < softBody.m_nodes.size(); ++i) {
+      const btSoftBody::Node& node = softBody.m_nodes[i];
+      surveyNode(survey, cache, i, node.m_x, node.m_q, m_dynamicToolsActive && !(node.m_im > 0));
+    }
+    finishSurvey(survey, cache, softBody);
+  }
+  return cache;
+}
+
+SoftBodySolver::SoftBodyCache& SoftBodySolver::topologyOf(const btSoftBody& softBody) {
   SoftBodyCache* found = findCache(softBody);
   if (found == nullptr) {
     m_caches.emplace_back();
@@ -663,83 +717,98 @@ SoftBodySolver::SoftBodyCache& SoftBodySolver::cacheOf(const btSoftBody& softBod
   if (m_isNearNode.size() < nodeCount) m_isNearNode.resize(nodeCount, 0);
   const void* nodes = nodeCount > 0 ? static_cast<const void*>(&softBody.m_nodes[0]) : nullptr;
   const void* faceArray = faceCount > 0 ? static_cast<const void*>(&softBody.m_faces[0]) : nullptr;
-  if (cache.nodeCount != nodeCount || cache.faceCount != faceCount || cache.nodes != nodes ||
-      cache.faceArray != faceArray) {
-    cache.nodes = nodes;
-    cache.faceArray = faceArray;
-    // Built when the body's topology is new to the solver or has changed (refine, cut): never in
-    // a step that only moves nodes.
-    cache.nodeCount = nodeCount;
-    cache.faceCount = faceCount;
-    cache.measuredReach = -1;
-    cache.begin.assign(nodeCount + 1, 0);
-    const btSoftBody::Node* first = nodeCount > 0 ? &softBody.m_nodes[0] : nullptr;
-    for (Index f = 0; f < faceCount; ++f) {
-      for (const btSoftBody::Node* node : softBody.m_faces[static_cast<int>(f)].m_n) {
-        ++cache.begin[static_cast<Index>(node - first) + 1];
-      }
-    }
-    for (Index n = 0; n < nodeCount; ++n) cache.begin[n + 1] += cache.begin[n];
-    cache.closed = surfaceIsClosed(softBody);
-    cache.faces.resize(cache.begin[nodeCount]);
-    cache.faceNodes.resize(faceCount);
-    std::vector<Index> filled(cache.begin.begin(), cache.begin.end() - 1);
-    for (Index f = 0; f < faceCount; ++f) {
-      const btSoftBody::Face& face = softBody.m_faces[static_cast<int>(f)];
-      for (int k = 0; k < 3; ++k) {
-        const auto node = static_cast<Index>(face.m_n[k] - first);
-        cache.faceNodes[f][static_cast<std::size_t>(k)] = node;
-        cache.faces[filled[node]++] = f;
-      }
+  if (cache.nodeCount == nodeCount && cache.faceCount == faceCount && cache.nodes == nodes &&
+      cache.faceArray == faceArray) {
+    return cache;
+  }
+  cache.nodes = nodes;
+  cache.faceArray = faceArray;
+  // Built when the body's topology is new to the solver or has changed (refine, cut): never in
+  // a step that only moves nodes.
+  cache.nodeCount = nodeCount;
+  cache.faceCount = faceCount;
+  cache.measuredReach = -1;
+  cache.begin.assign(nodeCount + 1, 0);
+  const btSoftBody::Node* first = nodeCount > 0 ? &softBody.m_nodes[0] : nullptr;
+  for (Index f = 0; f < faceCount; ++f) {
+    for (const btSoftBody::Node* node : softBody.m_faces[static_cast<int>(f)].m_n) {
+      ++cache.begin[static_cast<Index>(node - first) + 1];
     }
   }
-  if (cache.stepSeen != m_step) {
-    // The bound grows with each step's motion; after a step it did not see, it is measured anew.
-    if (cache.stepSeen != m_step - 1) cache.measuredReach = -1;
-    cache.stepSeen = m_step;
-    surveyNodes(cache, softBody);
+  for (Index n = 0; n < nodeCount; ++n) cache.begin[n + 1] += cache.begin[n];
+  cache.closed = surfaceIsClosed(softBody);
+  cache.faces.resize(cache.begin[nodeCount]);
+  cache.faceNodes.resize(faceCount);
+  std::vector<Index> filled(cache.begin.begin(), cache.begin.end() - 1);
+  for (Index f = 0; f < faceCount; ++f) {
+    const btSoftBody::Face& face = softBody.m_faces[static_cast<int>(f)];
+    for (int k = 0; k < 3; ++k) {
+      const auto node = static_cast<Index>(face.m_n[k] - first);
+      cache.faceNodes[f][static_cast<std::size_t>(k)] = node;
+      cache.faces[filled[node]++] = f;
+    }
   }
+  cache.isCandidate.assign(nodeCount, 0);
+  cache.candidates.clear();
   return cache;
 }
 
-void SoftBodySolver::surveyNodes(SoftBodyCache& cache, const btSoftBody& softBody) {
-  // One pass over the nodes serves the face reach and the body's box: the gathers of the step's
-  // pieces and passes then skip a body their reach misses without a pass of their own.
-  btScalar farthest = 0;
-  bool finite = true;
-  btVector3 lowest(BT_LARGE_FLOAT, BT_LARGE_FLOAT, BT_LARGE_FLOAT);
-  btVector3 highest = -lowest;
+// One pass over the nodes serves the face reach, the body's box and the gathers' candidates: the
+// gathers of the step's pieces and passes then skip a body their reach misses, and read only the
+// candidates of one they meet.
+SoftBodySolver::NodeSurvey SoftBodySolver::beginSurvey(SoftBodyCache& cache, int step) {
+  // The bound grows with each step's motion; after a step it did not see, it is measured anew.
+  if (cache.stepSeen != step - 1) cache.measuredReach = -1;
+  cache.stepSeen = step;
   cache.pinned.clear();
+  cache.movedByLastWord = false;
   cache.candidatesHold = false;
   for (const Index id : cache.candidates) cache.isCandidate[id] = 0;
   cache.candidates.clear();
   cache.candidatesSorted = true;
-  cache.isCandidate.resize(cache.nodeCount, 0);
-  const Real candidateReach = 2 * cache.measuredReach + Real(1e-9);
-  const bool collect = m_hasStepReach && cache.measuredReach >= 0;
-  const Aabb wanted = m_stepReach.expanded(collect ? candidateReach : 0);
-  for (int i = 0; i < softBody.m_nodes.size(); ++i) {
-    const btSoftBody::Node& node = softBody.m_nodes[i];
-    if (m_dynamicToolsActive && !(node.m_im > 0)) cache.pinned.push_back(static_cast<Index>(i));
-    const btScalar moved = (node.m_x - node.m_q).length2();
-    farthest = btMax(farthest, moved);
-    finite = finite && std::isfinite(moved);
-    lowest.setMin(node.m_x);
-    lowest.setMin(node.m_q);
-    highest.setMax(node.m_x);
-    highest.setMax(node.m_q);
-    if (collect && segmentMeets(wanted, node.m_q, node.m_x)) {
-      cache.candidates.push_back(static_cast<Index>(i));
-      cache.isCandidate[static_cast<Index>(i)] = 1;
-    }
+  NodeSurvey survey;
+  survey.candidateReach = kReachGrowth * cache.measuredReach + Real(1e-9);
+  survey.collect = m_hasStepReach && cache.measuredReach >= 0;
+  // The box in Bullet's scalar, rounded outward: a node it takes and the gather's own test does
+  // not is only looked at again.
+  const Aabb wanted = m_stepReach.expanded(survey.collect ? survey.candidateReach : 0);
+  for (int axis = 0; axis < 3; ++axis) {
+    survey.wantedLow[axis] = roundedDown(wanted.min[axis]);
+    survey.wantedHigh[axis] = roundedUp(wanted.max[axis]);
   }
+  return survey;
+}
+
+inline void SoftBodySolver::surveyNode(NodeSurvey& survey, SoftBodyCache& cache, int i, const btVector3& x,
+                                      const btVector3& q, bool pinned) {
+  if (pinned) cache.pinned.push_back(static_cast<Index>(i));
+  // In Bullet's scalar, without branches: this runs for every node of the body each step.
+  const btVector3 move = x - q;
+  const btScalar moved = move.dot(move);
+  survey.farthest = btMax(survey.farthest, moved);  // NaN propagates: the reach is then measured anew
+  survey.finite = survey.finite && moved <= std::numeric_limits<btScalar>::max();  // false for NaN
+  bool wanted = survey.collect;
+  for (int axis = 0; axis < 3; ++axis) {
+    const btScalar low = std::min(x[axis], q[axis]);
+    const btScalar high = std::max(x[axis], q[axis]);
+    survey.lowest[axis] = std::min(survey.lowest[axis], low);
+    survey.highest[axis] = std::max(survey.highest[axis], high);
+    wanted = wanted && high >= survey.wantedLow[axis] && low <= survey.wantedHigh[axis];
+  }
+  if (wanted) {
+    cache.candidates.push_back(static_cast<Index>(i));
+    cache.isCandidate[static_cast<Index>(i)] = 1;
+  }
+}
+
+void SoftBodySolver::finishSurvey(const NodeSurvey& survey, SoftBodyCache& cache, const btSoftBody& softBody) {
   // A node that is not finite escapes the box; the gather then looks at every node, as it must.
-  cache.boundsHold = finite;
-  cache.bounds = Aabb{toVec3(lowest), toVec3(highest)};
+  cache.boundsHold = survey.finite;
+  cache.bounds = Aabb{toVec3(survey.lowest), toVec3(survey.highest)};
   if (cache.measuredReach >= 0) {
-    cache.faceReach += 2 * Real(btSqrt(farthest));
-    cache.candidatesHold = collect && finite;
-    if (cache.faceReach <= candidateReach) return;
+    cache.faceReach += 2 * Real(btSqrt(survey.farthest));
+    cache.candidatesHold = survey.collect && survey.finite;
+    if (cache.faceReach <= survey.candidateReach) return;
   }
   Real reach = 0;
   for (const std::array<Index, 3>& corners : cache.faceNodes) {
@@ -756,7 +825,7 @@ void SoftBodySolver::surveyNodes(SoftBodyCache& cache, const btSoftBody& softBod
   }
   cache.measuredReach = reach;
   cache.faceReach = reach;
-  cache.candidatesHold = cache.candidatesHold && reach <= candidateReach;
+  cache.candidatesHold = cache.candidatesHold && reach <= survey.candidateReach;
 }
 
 void SoftBodySolver::stopAtPinnedNodes(btRigidBody& tool, const ToolModel& piece, const Pose& pieceEnd,
@@ -927,14 +996,20 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
   m_patchFaces.clear();
   // Faces looked at and found away are marked 2 for the rest of the gather, so each is boxed once.
   // A face's box reaches no further than the face reach from any of its nodes: a face with a node
-  // that is not near cannot meet the piece's reach, and is not boxed.
+  // that is not near cannot meet the piece's reach, and is not boxed. The bound covers the solve's
+  // moves, not the last word's: once the last word has moved nodes of the body in this step, every
+  // face of a near node is boxed.
+  const bool skipFar = !cache.movedByLastWord;
   for (const Index node : m_nearNodes) m_isNearNode[node] = 1;
   for (const Index node : m_nearNodes) {
     for (Index k = cache.begin[node]; k < cache.begin[node + 1]; ++k) {
       const Index f = cache.faces[k];
       if (m_faceInPatch[f] != 0) continue;
       const std::array<Index, 3>& corners = cache.faceNodes[f];
-      if (m_isNearNode[corners[0]] == 0 || m_isNearNode[corners[1]] == 0 || m_isNearNode[corners[2]] == 0) continue;
+      if (skipFar &&
+          (m_isNearNode[corners[0]] == 0 || m_isNearNode[corners[1]] == 0 || m_isNearNode[corners[2]] == 0)) {
+        continue;
+      }
       Aabb box;
       for (const Index n : corners) {
         const btSoftBody::Node& corner = softBody.m_nodes[static_cast<int>(n)];
@@ -977,6 +1052,7 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
     if (m_patch.moved[v] == 0 || !isFinite(m_patch.positions[v])) {
       continue;
     }
+    cache.movedByLastWord = true;
     if (cache.candidatesHold && cache.isCandidate[id] == 0) {
       cache.isCandidate[id] = 1;
       cache.candidates.push_back(id);

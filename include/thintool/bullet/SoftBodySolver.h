@@ -14,8 +14,9 @@
 /// Bullet runs the world's soft-body solver after the collision pass, and the solver moves the
 /// nodes again (links, pressure, its own contacts): whatever the collision pass did, the soft
 /// solver has the last word on where a node ends the step. This one runs Bullet's own solve
-/// unchanged (for a body that tools hold in it, Bullet's stages one by one, so as to measure what
-/// the holds carried: ToolStepReport::holdWrench), then, for every tool of the configuration
+/// unchanged (for a body that tools hold in it or that the last word looks at, Bullet's stages one
+/// by one, so as to measure what the holds carried, ToolStepReport::holdWrench, and to survey the
+/// body in the solve's last pass over its nodes), then, for every tool of the configuration
 /// whose ToolOptions::separation is enabled, puts every soft node and face near the tool back on
 /// its side (response/Separation.h) and sets a moved node's velocity along its move to the faster
 /// of its own and the tool's (no bounce). A dynamic tool receives the moved nodes' reaction as impulses, unless its force model already
@@ -86,7 +87,8 @@ class THINTOOL_API SoftBodySolver : public btDefaultSoftBodySolver {
   // the end of the step) reaches from any of its nodes: a face whose box meets the piece's reach
   // has every node within that bound of it, so the gather looks at the faces of the nodes near
   // the reach grown by it, never at all the faces. The bound is measured exactly, then grown
-  // each step by twice the farthest any node moved, and measured again once it has doubled.
+  // each step by twice the farthest any node moved, and measured again once it has grown
+  // kReachGrowth-fold.
   struct SoftBodyCache {
     const btSoftBody* softBody = nullptr;
     Index nodeCount = kInvalidIndex;
@@ -110,15 +112,16 @@ class THINTOOL_API SoftBodySolver : public btDefaultSoftBodySolver {
     // The pinned nodes (zero inverse mass), listed in steps where a dynamic tool takes reactions.
     std::vector<Index> pinned;
     // The nodes the step's gathers can want, so that each gather looks at these, not at every
-    // node: those whose move this step meets the step's reach grown by twice the measured face
-    // reach (what faceReach can grow to before it is measured again), and those the last word has
-    // moved since. Kept in the order of the body's nodes when a gather reads them. Without a
-    // measure to grow from, or after one that outgrew it, candidatesHold is false and the gathers
-    // look at every node.
+    // node: those whose move this step meets the step's reach grown by kReachGrowth times the
+    // measured face reach (what faceReach can grow to before it is measured again), and those the
+    // last word has moved since. Kept in the order of the body's nodes when a gather reads them.
+    // Without a measure to grow from, or after one that outgrew it, candidatesHold is false and
+    // the gathers look at every node.
     std::vector<Index> candidates;
     std::vector<unsigned char> isCandidate;  // per node
     bool candidatesHold = false;
     bool candidatesSorted = true;
+    bool movedByLastWord = false;  // the last word has moved a node of the body in this step
     // The bound on what the body's forces add to a node's velocity in the step after boundStep
     // (EnergyGuardSettings::boundForcesNextStep), m/s per axis: the larger of speedFactor times
     // the fastest node, tool corner or restingSpeed, and, in a grasp, the body's extent over the step.
@@ -139,25 +142,49 @@ class THINTOOL_API SoftBodySolver : public btDefaultSoftBodySolver {
   // The patch's vertex of a soft node, added with the node when absent; a soft face, added once.
   Index patchVertexOf(const btSoftBody& softBody, Index node);
   void addPatchFace(const btSoftBody& softBody, const SoftBodyCache& cache, Index f);
-  // Once a step: the face reach, the box of the body's nodes, and the gathers' candidates.
-  void surveyNodes(SoftBodyCache& cache, const btSoftBody& softBody);
+  // The body's cache with its topology up to date, not yet surveyed in this step.
+  SoftBodyCache& topologyOf(const btSoftBody& softBody);
+  // Once a step, a pass over the body's nodes: the face reach, the box of the nodes and the
+  // gathers' candidates. Run in the solve's last pass over the nodes where the solve is ThinTool's
+  // (solveInStages), or on its own.
+  struct NodeSurvey {
+    btScalar farthest = 0;  // squared
+    bool finite = true;
+    btVector3 lowest{BT_LARGE_FLOAT, BT_LARGE_FLOAT, BT_LARGE_FLOAT};
+    btVector3 highest{-BT_LARGE_FLOAT, -BT_LARGE_FLOAT, -BT_LARGE_FLOAT};
+    btVector3 wantedLow{0, 0, 0};  // where a node's move makes it a candidate
+    btVector3 wantedHigh{0, 0, 0};
+    bool collect = false;
+    Real candidateReach = 0;
+  };
+  NodeSurvey beginSurvey(SoftBodyCache& cache, int step);
+  // pinned: the node is pinned and the step lists pinned nodes (m_dynamicToolsActive).
+  void surveyNode(NodeSurvey& survey, SoftBodyCache& cache, int i, const btVector3& x, const btVector3& q, bool pinned);
+  void finishSurvey(const NodeSurvey& survey, SoftBodyCache& cache, const btSoftBody& softBody);
   // The soft body's pinned nodes stop the dynamic tool that carries the piece short of them.
   void stopAtPinnedNodes(btRigidBody& tool, const ToolModel& piece, const Pose& pieceEnd, Real inverseStep,
                          const SoftBodyCache& cache, const btSoftBody& softBody);
   // The soft solve of each active body. A body that tools hold in the solver (their holds among
-  // its contacts) is solved by solveMeasuringHolds, the others by Bullet's own solveConstraints.
+  // its contacts) or that the last word will look at is solved by solveInStages, the others
+  // by Bullet's own solveConstraints.
   void solveSoftBodies();
+  // Whether a tool of this step's last word acts on the body.
+  bool lastWordReaches(const btSoftBody& body) const;
   // Lists in m_held the nodes that tools hold in this body's solve; false when none.
   bool collectHolds(btSoftBody& body);
   // btSoftBody::solveConstraints, stage for stage, with each contact stage of the position solve
-  // measured: the moves of the held nodes are the impulses their holds applied.
-  void solveMeasuringHolds(btSoftBody& body);
+  // measured (the moves of the held nodes are the impulses their holds applied) and the last
+  // word's survey in its last pass over the nodes.
+  void solveInStages(btSoftBody& body);
   // Splits a contact stage's moves of the nodes that several tools held among those tools.
   void replaySharedHolds(btSoftBody& body, double inverseStepSquared);
 
   // Fills m_backingOfNode from the soft body's contacts of this step.
   void findBackings(const btSoftBody& softBody);
 
+  // How far the face reach may grow before it is measured again, as a multiple of the last
+  // measure: the measure visits every face, and the gather's work grows with the reach.
+  static constexpr Real kReachGrowth = 2;
   static constexpr int kMostPasses = 4;
   // A guard only: the patch grows until no moved node has a face outside it. A cascade of faces
   // pushed into a plate by their neighbours' moves took more than four extensions (generated
