@@ -761,13 +761,14 @@ SoftBodySolver::NodeSurvey SoftBodySolver::beginSurvey(SoftBodyCache& cache, int
   if (cache.stepSeen != step - 1) cache.measuredReach = -1;
   cache.stepSeen = step;
   cache.pinned.clear();
-  cache.movedByLastWord = false;
+  cache.lastWordReach = 0;
   cache.candidatesHold = false;
   for (const Index id : cache.candidates) cache.isCandidate[id] = 0;
   cache.candidates.clear();
   cache.candidatesSorted = true;
   NodeSurvey survey;
   survey.candidateReach = kReachGrowth * cache.measuredReach + Real(1e-9);
+  cache.candidateReach = survey.candidateReach;
   survey.collect = m_hasStepReach && cache.measuredReach >= 0;
   // The box in Bullet's scalar, rounded outward: a node it takes and the gather's own test does
   // not is only looked at again.
@@ -967,7 +968,9 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
   // (their nodes at both ends of the step) meet it, found among the faces of the nodes near the
   // reach grown by the cache's face reach, with the faces' nodes.
   SoftBodyCache& cache = cacheOf(softBody);
-  const Aabb grown = swept.expanded(cache.faceReach);
+  // The faces' reach as the solve left them, and what the last word's moves in this step added.
+  const Real faceReach = cache.faceReach + cache.lastWordReach;
+  const Aabb grown = swept.expanded(faceReach);
   m_patch.clear();
   m_nearNodes.clear();
   // A dynamic tool takes the moved nodes' reaction, and the body's pinned nodes stop it, near this
@@ -984,7 +987,7 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
     m_nearNodes.push_back(i);
     if (segmentMeets(swept, node.m_q, node.m_x)) patchVertexOf(softBody, i);
   };
-  if (cache.candidatesHold) {
+  if (cache.candidatesHold && faceReach <= cache.candidateReach) {
     // In the nodes' order, as a walk over all of them would meet them: the patch, and so the
     // stage's arithmetic, does not depend on how the gather found its nodes.
     if (!cache.candidatesSorted) std::sort(cache.candidates.begin(), cache.candidates.end());
@@ -996,20 +999,14 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
   m_patchFaces.clear();
   // Faces looked at and found away are marked 2 for the rest of the gather, so each is boxed once.
   // A face's box reaches no further than the face reach from any of its nodes: a face with a node
-  // that is not near cannot meet the piece's reach, and is not boxed. The bound covers the solve's
-  // moves, not the last word's: once the last word has moved nodes of the body in this step, every
-  // face of a near node is boxed.
-  const bool skipFar = !cache.movedByLastWord;
+  // that is not near cannot meet the piece's reach, and is not boxed.
   for (const Index node : m_nearNodes) m_isNearNode[node] = 1;
   for (const Index node : m_nearNodes) {
     for (Index k = cache.begin[node]; k < cache.begin[node + 1]; ++k) {
       const Index f = cache.faces[k];
       if (m_faceInPatch[f] != 0) continue;
       const std::array<Index, 3>& corners = cache.faceNodes[f];
-      if (skipFar &&
-          (m_isNearNode[corners[0]] == 0 || m_isNearNode[corners[1]] == 0 || m_isNearNode[corners[2]] == 0)) {
-        continue;
-      }
+      if (m_isNearNode[corners[0]] == 0 || m_isNearNode[corners[1]] == 0 || m_isNearNode[corners[2]] == 0) continue;
       Aabb box;
       for (const Index n : corners) {
         const btSoftBody::Node& corner = softBody.m_nodes[static_cast<int>(n)];
@@ -1045,6 +1042,7 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
   // into a kick away from the tool.
   if (dynamicTool != nullptr) findBackings(softBody);
   bool movedAny = false;
+  Real largestMove = 0;
   for (Index v = 0; v < m_patch.vertexCount(); ++v) {
     const Index id = m_patch.nodeIds[v];
     THINTOOL_ASSERT(id < static_cast<Index>(nodeCount) && m_vertexOfNode[id] == v);
@@ -1052,7 +1050,6 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
     if (m_patch.moved[v] == 0 || !isFinite(m_patch.positions[v])) {
       continue;
     }
-    cache.movedByLastWord = true;
     if (cache.candidatesHold && cache.isCandidate[id] == 0) {
       cache.isCandidate[id] = 1;
       cache.candidates.push_back(id);
@@ -1061,6 +1058,8 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
     btSoftBody::Node& node = softBody.m_nodes[static_cast<int>(id)];
     const btVector3 moved = toBt(m_patch.positions[v]);
     const btVector3 displacement = moved - node.m_x;
+    largestMove = std::max(largestMove, Real(displacement.length()));
+    cache.bounds.include(toVec3(moved));
     node.m_x = moved;
     const Vec3& normal = m_patch.directions[v];
     const Vec3 toolPoint = m_patch.positions[v];
@@ -1091,6 +1090,9 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
       m_backingOfNode[static_cast<Index>(softBody.m_rcontacts[c].m_node - &softBody.m_nodes[0])] = -1;
     }
   }
+  // A face's box grows by at most twice its nodes' largest move: the gathers after this one reach
+  // that much further for the faces the move stretched.
+  cache.lastWordReach += 2 * largestMove;
   if (movedAny) {
     softBody.activate();
     if (dynamicTool != nullptr) dynamicTool->activate();

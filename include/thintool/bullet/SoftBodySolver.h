@@ -121,7 +121,10 @@ class THINTOOL_API SoftBodySolver : public btDefaultSoftBodySolver {
     std::vector<unsigned char> isCandidate;  // per node
     bool candidatesHold = false;
     bool candidatesSorted = true;
-    bool movedByLastWord = false;  // the last word has moved a node of the body in this step
+    Real candidateReach = 0;  // the face reach the candidates cover
+    // How much further a face reaches since the survey for the last word's moves in this step: the
+    // face reach covers the solve's moves only.
+    Real lastWordReach = 0;
     // The bound on what the body's forces add to a node's velocity in the step after boundStep
     // (EnergyGuardSettings::boundForcesNextStep), m/s per axis: the larger of speedFactor times
     // the fastest node, tool corner or restingSpeed, and, in a grasp, the body's extent over the step.
