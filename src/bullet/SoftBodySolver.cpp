@@ -364,25 +364,23 @@ void SoftBodySolver::solveInStages(btSoftBody& body) {
     // them again: the last word's survey of the body runs in it, on nodes already in cache, for
     // the step the last word is about to read (m_step advances after the solve). The whole pass,
     // Bullet's velocities in it, counts as the last word's time.
-    if (m_hasStepReach && config.diterations == 0 && body.m_clusters.size() == 0) {
-      const auto start = std::chrono::steady_clock::now();
-      SoftBodyCache& cache = topologyOf(body);
-      NodeSurvey survey = beginSurvey(cache, m_step + 1);
-      for (int i = 0; i < body.m_nodes.size(); ++i) {
-        btSoftBody::Node& node = body.m_nodes[i];
-        node.m_v = (node.m_x - node.m_q) * velocityFactor;
-        node.m_f = btVector3(0, 0, 0);
-        surveyNode(survey, cache, i, node.m_x, node.m_q, m_dynamicToolsActive && !(node.m_im > 0));
+    const auto start = std::chrono::steady_clock::now();
+    SoftBodyCache* surveyed =
+        m_hasStepReach && config.diterations == 0 && body.m_clusters.size() == 0 ? &topologyOf(body) : nullptr;
+    NodeSurvey survey;
+    if (surveyed != nullptr) survey = beginSurvey(*surveyed, m_step + 1);
+    for (int i = 0; i < body.m_nodes.size(); ++i) {
+      btSoftBody::Node& node = body.m_nodes[i];
+      node.m_v = (node.m_x - node.m_q) * velocityFactor;
+      node.m_f = btVector3(0, 0, 0);
+      if (surveyed != nullptr) {
+        surveyNode(survey, *surveyed, i, node.m_x, node.m_q, m_dynamicToolsActive && !(node.m_im > 0));
       }
-      finishSurvey(survey, cache, body);
+    }
+    if (surveyed != nullptr) {
+      finishSurvey(survey, *surveyed, body);
       m_active.front()->m_lastWord.microseconds +=
           std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
-    } else {
-      for (int i = 0; i < body.m_nodes.size(); ++i) {
-        btSoftBody::Node& node = body.m_nodes[i];
-        node.m_v = (node.m_x - node.m_q) * velocityFactor;
-        node.m_f = btVector3(0, 0, 0);
-      }
     }
   }
   if (config.diterations > 0) {
@@ -767,12 +765,11 @@ SoftBodySolver::NodeSurvey SoftBodySolver::beginSurvey(SoftBodyCache& cache, int
   cache.candidates.clear();
   cache.candidatesSorted = true;
   NodeSurvey survey;
-  survey.candidateReach = kReachGrowth * cache.measuredReach + Real(1e-9);
-  cache.candidateReach = survey.candidateReach;
+  cache.candidateReach = kReachGrowth * cache.measuredReach + Real(1e-9);
   survey.collect = m_hasStepReach && cache.measuredReach >= 0;
   // The box in Bullet's scalar, rounded outward: a node it takes and the gather's own test does
   // not is only looked at again.
-  const Aabb wanted = m_stepReach.expanded(survey.collect ? survey.candidateReach : 0);
+  const Aabb wanted = m_stepReach.expanded(survey.collect ? cache.candidateReach : 0);
   for (int axis = 0; axis < 3; ++axis) {
     survey.wantedLow[axis] = roundedDown(wanted.min[axis]);
     survey.wantedHigh[axis] = roundedUp(wanted.max[axis]);
@@ -809,7 +806,7 @@ void SoftBodySolver::finishSurvey(const NodeSurvey& survey, SoftBodyCache& cache
   if (cache.measuredReach >= 0) {
     cache.faceReach += 2 * Real(btSqrt(survey.farthest));
     cache.candidatesHold = survey.collect && survey.finite;
-    if (cache.faceReach <= survey.candidateReach) return;
+    if (cache.faceReach <= cache.candidateReach) return;
   }
   Real reach = 0;
   for (const std::array<Index, 3>& corners : cache.faceNodes) {
@@ -826,7 +823,7 @@ void SoftBodySolver::finishSurvey(const NodeSurvey& survey, SoftBodyCache& cache
   }
   cache.measuredReach = reach;
   cache.faceReach = reach;
-  cache.candidatesHold = cache.candidatesHold && reach <= survey.candidateReach;
+  cache.candidatesHold = cache.candidatesHold && reach <= cache.candidateReach;
 }
 
 void SoftBodySolver::stopAtPinnedNodes(btRigidBody& tool, const ToolModel& piece, const Pose& pieceEnd,

@@ -158,7 +158,6 @@ class THINTOOL_API SoftBodySolver : public btDefaultSoftBodySolver {
     btVector3 wantedLow{0, 0, 0};  // where a node's move makes it a candidate
     btVector3 wantedHigh{0, 0, 0};
     bool collect = false;
-    Real candidateReach = 0;
   };
   NodeSurvey beginSurvey(SoftBodyCache& cache, int step);
   // pinned: the node is pinned and the step lists pinned nodes (m_dynamicToolsActive).
