@@ -666,11 +666,11 @@ bool SoftBodySolver::separate(Tool& tool, bool lastResort) {
   bool moved = false;
   for (Index p = 0; p < tool.pieceCount(); ++p) {
     const PieceMotion motion(before, now, settings.maxTurnPerSample, tool.pieceTransform(p));
-    const bool alone = !anotherPieceNear(tool, p, motion);
+    findNearPieces(tool, p, motion);
     for (int s = 0; s < m_softBodySet.size(); ++s) {
       btSoftBody& softBody = *m_softBodySet[s];
       if (detail::ignores(softBody, tool.body()) || !detail::lastWordActsOn(detail::stockReason(softBody))) continue;
-      const SeparationCounts piece = separatePiece(tool, tool.piece(p), motion, softBody, lastResort, alone);
+      const SeparationCounts piece = separatePiece(tool, tool.piece(p), motion, softBody, lastResort, m_nearPieces);
       moved = moved || piece.nodesMoved > 0 || piece.facesMoved > 0;
       counts.accumulate(piece);
     }
@@ -851,19 +851,20 @@ void SoftBodySolver::findBackings(const btSoftBody& softBody) {
 
 // Whether a piece of any tool other than piece p of tool ends the step within a piece's width of
 // where piece p swept: near enough for the two to hold a soft face between them.
-bool SoftBodySolver::anotherPieceNear(const Tool& tool, Index p, const PieceMotion& motion) const {
+void SoftBodySolver::findNearPieces(const Tool& tool, Index p, const PieceMotion& motion) {
+  m_nearPieces.clear();
   const ToolModel& piece = tool.piece(p);
   const Aabb reach = sweptBounds(piece.bounds, motion).expanded(length(piece.bounds.extent()));
   for (const Tool* other : m_configuration.tools()) {
     const Pose pose = toPose(other->body().getWorldTransform());
     for (Index q = 0; q < other->pieceCount(); ++q) {
       if (other == &tool && q == p) continue;
-      if (!isFinite(pose) || reach.overlaps(transformedBounds(other->piece(q).bounds, pose * other->pieceTransform(q)))) {
-        return true;
+      const Pose end = pose * other->pieceTransform(q);
+      if (!isFinite(pose) || reach.overlaps(transformedBounds(other->piece(q).bounds, end))) {
+        m_nearPieces.push_back({&other->piece(q), end});
       }
     }
   }
-  return false;
 }
 
 Index SoftBodySolver::patchVertexOf(const btSoftBody& softBody, Index node) {
@@ -888,12 +889,12 @@ void SoftBodySolver::addPatchFace(const btSoftBody& softBody, const SoftBodyCach
 // those of every moved node join the patch, and the stage runs again, until none is missing.
 SeparationCounts SoftBodySolver::separateGrowingPatch(Tool& tool, const ToolModel& piece, const PieceMotion& motion,
                                                      const btSoftBody& softBody, const SoftBodyCache& cache,
-                                                     bool lastResort, bool alone) {
+                                                     bool lastResort, const std::vector<NearPiece>& near) {
   SeparationCounts counts;
   for (int extension = 0;; ++extension) {
     const SeparationSettings& settings = tool.m_options.separation;
     const SeparationCounts run = lastResort ? carryMeetingFaces(piece, motion, settings, m_patch)
-                                            : separateFromPiece(piece, motion, settings, m_patch, alone);
+                                            : separateFromPiece(piece, motion, settings, m_patch, near);
     counts.nodesMoved += run.nodesMoved;
     counts.facesMoved += run.facesMoved;
     counts.nodesInside = run.nodesInside;
@@ -926,8 +927,8 @@ SeparationCounts SoftBodySolver::separateGrowingPatch(Tool& tool, const ToolMode
 // The winding number visits every face of the body, and only for a turning piece near a closed
 // body.
 void SoftBodySolver::keepOutsideClosedBody(Tool& tool, const ToolModel& piece, const PieceMotion& motion,
-                                           const btSoftBody& softBody, const SoftBodyCache& cache, bool alone,
-                                           SeparationCounts& counts) {
+                                           const btSoftBody& softBody, const SoftBodyCache& cache,
+                                           const std::vector<NearPiece>& near, SeparationCounts& counts) {
   const Vec3 centre = piece.bounds.center();
   const auto endsInside = [&] {
     const auto endOf = [&](Index id) {
@@ -944,7 +945,7 @@ void SoftBodySolver::keepOutsideClosedBody(Tool& tool, const ToolModel& piece, c
       m_patch.moved[v] = 0;
     }
     const SeparationCounts bothReadings = counts;
-    counts = separateGrowingPatch(tool, piece, motion.alongChord(), softBody, cache, false, alone);
+    counts = separateGrowingPatch(tool, piece, motion.alongChord(), softBody, cache, false, near);
     counts.nodesMoved += bothReadings.nodesMoved;
     counts.facesMoved += bothReadings.facesMoved;
     if (!endsInside()) return;
@@ -956,7 +957,8 @@ void SoftBodySolver::keepOutsideClosedBody(Tool& tool, const ToolModel& piece, c
 }
 
 SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piece, const PieceMotion& motion,
-                                               btSoftBody& softBody, bool lastResort, bool alone) {
+                                               btSoftBody& softBody, bool lastResort,
+                                               const std::vector<NearPiece>& near) {
   const Real clearance = tool.m_options.separation.clearance;
   const Aabb swept = sweptBounds(piece.bounds, motion).expanded(clearance);
   const int nodeCount = softBody.m_nodes.size();
@@ -1026,9 +1028,9 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
   }
   ++m_piecesNear;
 
-  SeparationCounts counts = separateGrowingPatch(tool, piece, motion, softBody, cache, lastResort, alone);
+  SeparationCounts counts = separateGrowingPatch(tool, piece, motion, softBody, cache, lastResort, near);
   if (!lastResort && cache.closed && motion.samples() > 1) {
-    keepOutsideClosedBody(tool, piece, motion, softBody, cache, alone, counts);
+    keepOutsideClosedBody(tool, piece, motion, softBody, cache, near, counts);
   }
   for (Index f : m_patchFaces) m_faceInPatch[f] = 0;
   THINTOOL_ASSERT(m_patch.faces.size() <= m_patchFaces.size());

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cmath>
+#include <vector>
 
 namespace thintool {
 namespace {
@@ -392,6 +393,42 @@ TEST(Separation, TwoFacesRoundANeedleOneWithAPinnedNodeComeClear) {
           << "side " << side;
     }
   }
+}
+
+TEST(Separation, FacesMovedTogetherAreNotPushedIntoANearPiece) {
+  // A small face inside the corner of a block, its nodes each nearest a different side: they leave
+  // by three sides and the face still cuts the corner, so when the rounds run out it moves on
+  // whole, about 0.1 m along one of the block's normals. A plate stands beside the block, where
+  // the move the stage prefers would put the face. Told of the plate, the face goes another way;
+  // not told, it goes into the plate. With the plate further off, telling changes nothing.
+  const ToolModel block = buildToolModel(makeBoxMesh({0.1, 0.1, 0.1}), ToolModelSettings{});
+  const ToolModel other = buildToolModel(makeBoxMesh({0.01, 0.2, 0.2}), ToolModelSettings{});
+  const Vec3 corners[3] = {{0.09, 0, 0}, {0, 0.09, 0}, {0, 0, 0.09}};
+  SeparationSettings oneRound;
+  oneRound.maxRounds = 1;
+  const auto run = [&](const Pose& plateEnd, bool told, bool& inPlate) {
+    Patch p;
+    for (const Vec3& corner : corners) p.node(corner, corner);
+    p.patch.faces.push_back({0, 1, 2});
+    std::vector<NearPiece> near;
+    if (told) near.push_back({&other, plateEnd});
+    const SeparationCounts counts = separateFromPiece(block, PieceMotion(Pose{}, Pose{}, 0.1), oneRound, p.patch, near);
+    EXPECT_EQ(counts.facesPierced, 0u);
+    EXPECT_EQ(counts.nodesInside, 0u);
+    Vec3 local[3];
+    for (int k = 0; k < 3; ++k) local[k] = plateEnd.applyInverse(p.patch.positions[static_cast<Index>(k)]);
+    inPlate = triangleMeetsPiece(other, local[0], local[1], local[2], 0);
+    return p.patch.positions;
+  };
+  bool inPlate = false;
+  run(at({0.16, 0, 0}), false, inPlate);
+  EXPECT_TRUE(inPlate);
+  run(at({0.16, 0, 0}), true, inPlate);
+  EXPECT_FALSE(inPlate);
+  bool farInPlate = true;
+  const std::vector<Vec3> notTold = run(at({0.25, 0, 0}), false, farInPlate);
+  EXPECT_FALSE(farInPlate);
+  EXPECT_EQ(run(at({0.25, 0, 0}), true, farInPlate), notTold);
 }
 
 TEST(Separation, SettingsAreValidated) {

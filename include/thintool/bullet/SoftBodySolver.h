@@ -79,8 +79,9 @@ class THINTOOL_API SoftBodySolver : public btDefaultSoftBodySolver {
   // lastResort, each piece only carries the faces that still meet it (carryMeetingFaces).
   bool separate(Tool& tool, bool lastResort);
   SeparationCounts separatePiece(Tool& tool, const ToolModel& piece, const PieceMotion& motion, btSoftBody& softBody,
-                                 bool lastResort, bool alone);
-  bool anotherPieceNear(const Tool& tool, Index p, const PieceMotion& motion) const;
+                                 bool lastResort, const std::vector<NearPiece>& near);
+  // Fills m_nearPieces with the pieces of every tool whose reach meets that of the tool's piece p.
+  void findNearPieces(const Tool& tool, Index p, const PieceMotion& motion);
 
   // What the gather keeps per soft body. The faces of each node (CSR), rebuilt when the body's
   // node or face count changes. And a bound on how far a face's box (its nodes at the start and
@@ -137,11 +138,12 @@ class THINTOOL_API SoftBodySolver : public btDefaultSoftBodySolver {
   // missing.
   SeparationCounts separateGrowingPatch(Tool& tool, const ToolModel& piece, const PieceMotion& motion,
                                         const btSoftBody& softBody, const SoftBodyCache& cache, bool lastResort,
-                                        bool alone);
+                                        const std::vector<NearPiece>& near);
   // A turning piece whose centre ends the step inside a closed body it was outside of at the start
   // is put back outside (see the definition).
   void keepOutsideClosedBody(Tool& tool, const ToolModel& piece, const PieceMotion& motion, const btSoftBody& softBody,
-                             const SoftBodyCache& cache, bool alone, SeparationCounts& counts);
+                             const SoftBodyCache& cache, const std::vector<NearPiece>& near,
+                             SeparationCounts& counts);
   // The patch's vertex of a soft node, added with the node when absent; a soft face, added once.
   Index patchVertexOf(const btSoftBody& softBody, Index node);
   void addPatchFace(const btSoftBody& softBody, const SoftBodyCache& cache, Index f);
@@ -197,6 +199,7 @@ class THINTOOL_API SoftBodySolver : public btDefaultSoftBodySolver {
   std::vector<Tool*> m_active;  // tools whose stage runs this step
   int m_piecesNear = 0;         // (piece, soft body) pairs with soft features near, this pass
   SeparationPatch m_patch;
+  std::vector<NearPiece> m_nearPieces;  // the pieces near the one being separated
   std::vector<Index> m_vertexOfNode;  // soft node -> patch vertex, kInvalidIndex when absent
   std::vector<unsigned char> m_faceInPatch;  // soft face -> whether the patch has it
   std::vector<Index> m_patchFaces;           // the soft faces the patch has

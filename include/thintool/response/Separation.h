@@ -48,7 +48,9 @@
 ///   waits for the slide below.
 /// - Face moves and node moves alternate (Gauss–Seidel) for at most `maxRounds`, nodes last. When
 ///   the rounds run out with faces still pierced (faces that want a shared node on opposite
-///   sides), their nodes move together by the shortest translation that clears them all.
+///   sides), their nodes move together by the shortest translation that clears them all; one
+///   longer than twice the path of the piece's farthest-going corner pushes no face into another
+///   piece near it (the other jaw), where the two would move the group on and on.
 /// - A face with a pinned node left pierced after that lies across a rim: the piece swept past the
 ///   pinned node and left its neighbours on the far side. Its free nodes slide together, along the
 ///   piece's face and past the rim, by the shortest translation (along a face normal of the piece
@@ -190,11 +192,20 @@ class PieceMotion {
   int m_samples = 1;
 };
 
+/// Another piece near the one the stage separates from (the other jaw, another tool), where it
+/// ends the step. A pose that is not finite stands for a piece whose place is unknown.
+struct NearPiece {
+  const ToolModel* model = nullptr;
+  Pose end;
+};
+
 /// Puts the patch's nodes and faces back on their side of the piece (see the file comment).
-/// Writes positions and moved; returns what it did and what is left. alone: no other piece (the
-/// other jaw, another tool) is near this one, so that a face may swing about an edge of it.
+/// Writes positions and moved; returns what it did and what is left. nearPieces: the other pieces near
+/// this one. With none, a face may swing about an edge of it; with some, the translation that moves
+/// stuck faces together pushes no face into one of them that it did not meet before.
 SeparationCounts separateFromPiece(const ToolModel& piece, const PieceMotion& motion,
-                                   const SeparationSettings& settings, SeparationPatch& patch, bool alone = true);
+                                   const SeparationSettings& settings, SeparationPatch& patch,
+                                   const std::vector<NearPiece>& nearPieces = {});
 
 /// The last resort alone, for a tool whose pieces keep undoing each other's moves (two jaws with a
 /// face between them): the movable nodes of the faces that meet the piece at the end of the step
