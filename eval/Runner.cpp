@@ -41,7 +41,8 @@ scenes::Algorithm baselineAlgorithmOf(AlgorithmKind kind) {
     case AlgorithmKind::StockE: return scenes::Algorithm::StockE;
     case AlgorithmKind::RayOnly:
     case AlgorithmKind::Paper: return scenes::Algorithm::ThinToolPaper;
-    case AlgorithmKind::Swept: break;
+    case AlgorithmKind::Swept:
+    case AlgorithmKind::Discrete: break;
   }
   return scenes::Algorithm::ThinTool;
 }
@@ -240,6 +241,7 @@ ToolOptions optionsFor(const SceneSpec& scene, const ToolSpec& tool) {
   ToolOptions options;
   if (scene.algorithm == AlgorithmKind::Paper) options = ToolOptions::paper();
   if (scene.algorithm == AlgorithmKind::RayOnly) options = ToolOptions::rayOnly();
+  if (scene.algorithm == AlgorithmKind::Discrete) options.swept = false;
   options.name = tool.name;
   options.force.enabled = scene.force;
   if (scene.friction.has_value()) {
@@ -252,6 +254,24 @@ ToolOptions optionsFor(const SceneSpec& scene, const ToolSpec& tool) {
   options.energyGuard.enabled = options.energyGuard.enabled && scene.energyGuard;
   options.energyGuard.boundForcesNextStep = options.energyGuard.boundForcesNextStep && scene.boundForces;
   return options;
+}
+
+// The narrowest extent of a convex solid across any of its faces' normals: a box's thinnest side.
+double narrowestWidth(const ConvexSolid& solid) {
+  double narrowest = std::numeric_limits<double>::infinity();
+  for (const Triangle& triangle : solid.triangles) {
+    const auto corner = [&](std::size_t k) { return solid.vertices[static_cast<std::size_t>(triangle[k])]; };
+    const Vec3 normal = normalizedOrZero(cross(corner(1) - corner(0), corner(2) - corner(0)));
+    if (normal == Vec3{}) continue;
+    double low = std::numeric_limits<double>::infinity();
+    double high = -low;
+    for (const Vec3& v : solid.vertices) {
+      low = std::min(low, double(dot(normal, v)));
+      high = std::max(high, double(dot(normal, v)));
+    }
+    narrowest = std::min(narrowest, high - low);
+  }
+  return narrowest;
 }
 
 // The angle (radians) of the rotation from a to b.
@@ -338,6 +358,7 @@ RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
 
   std::vector<GroundTruthPiece> pieces;
   std::vector<double> toolReach;  // m, the farthest corner of each tool's pieces from its origin
+  std::vector<double> toolThickness;  // m, the narrowest width of each tool's thinnest piece
   for (std::size_t t = 0; t < scene.tools.size(); ++t) {
     const ToolSpec& tool = scene.tools[t];
     const bool dynamic = tool.mass > 0;
@@ -356,11 +377,14 @@ RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
     w.tools.push_back(std::move(body));
     w.thinTools.push_back(stock ? nullptr : &addTool(world, *w.tools.back(), optionsFor(scene, tool)));
     double reach = 0;
+    double thickness = std::numeric_limits<double>::infinity();
     for (const ToolPieceSpec& piece : tool.pieces) {
       pieces.push_back({SolidDistance(solidOf(piece)), piece.offset, int(t), !dynamic});
       for (const Vec3& v : solidOf(piece).vertices) reach = std::max(reach, length(piece.offset.apply(v)));
+      thickness = std::min(thickness, narrowestWidth(solidOf(piece)));
     }
     toolReach.push_back(reach);
+    toolThickness.push_back(thickness);
   }
 
   const btScalar dt = btScalar(scene.timeStep);
@@ -504,6 +528,8 @@ RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
                             turnAngle(posesBefore[t].rotation, toolPoses[t].rotation) * toolReach[t]) /
                            scene.timeStep;
       result.peakToolSpeed = std::max(result.peakToolSpeed, speed);
+      result.peakToolStepOverThickness =
+          std::max(result.peakToolStepOverThickness, speed * scene.timeStep / toolThickness[t]);
     }
     sample.nodeSpeed = fastestNodeSpeed(previousNodes, nodes, scene.timeStep);
     result.peakNodeSpeed = std::max(result.peakNodeSpeed, sample.nodeSpeed);

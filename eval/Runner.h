@@ -50,6 +50,10 @@ struct RunResult {
   /// body's pose before and after the step (kinematic or dynamic alike), reach the farthest corner
   /// of its pieces from the body's origin.
   double peakToolSpeed = 0;
+  /// The farthest any tool's fastest point went in a step, over that tool's thickness: the
+  /// narrowest width of its thinnest piece across a face's normal. Under 1, every tool moved less
+  /// than its own thickness in every measured step.
+  double peakToolStepOverThickness = 0;
   bool finite = true;            ///< false when a soft node became non-finite (the run stops there)
   std::vector<StepSample> samples;
 };

@@ -266,6 +266,7 @@ const char* algorithmKey(AlgorithmKind kind) {
     case AlgorithmKind::StockE: return "stock-E";
     case AlgorithmKind::RayOnly: return "ray-only";
     case AlgorithmKind::Paper: return "paper";
+    case AlgorithmKind::Discrete: return "discrete";
     case AlgorithmKind::Swept: break;
   }
   return "swept";
@@ -341,9 +342,10 @@ SceneSpec parseScene(const std::string& text, const std::string& sourceName, con
 
   if (scene.has("algorithm")) {
     const std::string key =
-        scene.at("algorithm").oneOf({"stock-A", "stock-B", "stock-E", "ray-only", "paper", "swept"});
+        scene.at("algorithm").oneOf({"stock-A", "stock-B", "stock-E", "ray-only", "paper", "swept", "discrete"});
     for (AlgorithmKind kind : {AlgorithmKind::StockA, AlgorithmKind::StockB, AlgorithmKind::StockE,
-                               AlgorithmKind::RayOnly, AlgorithmKind::Paper, AlgorithmKind::Swept}) {
+                               AlgorithmKind::RayOnly, AlgorithmKind::Paper, AlgorithmKind::Swept,
+                               AlgorithmKind::Discrete}) {
       if (key == algorithmKey(kind)) spec.algorithm = kind;
     }
   }

@@ -28,8 +28,9 @@ enum class AlgorithmKind {
   RayOnly,   ///< ThinTool: the paper's discrete rays without association or checks (Fig. 7 right)
   Paper,     ///< ThinTool: the paper's full algorithm (discrete)
   Swept,     ///< ThinTool's default: swept detection
+  Discrete,  ///< ThinTool's defaults with the paper's discrete detection in place of the swept one
 };
-/// The name used in scene files and result tables: "stock-A", ..., "swept".
+/// The name used in scene files and result tables: "stock-A", ..., "swept", "discrete".
 const char* algorithmKey(AlgorithmKind kind);
 bool isStock(AlgorithmKind kind);
 

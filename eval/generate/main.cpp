@@ -35,13 +35,16 @@ inside the soft body, pierced faces, penetration deeper than 0.1 mm, non-finite 
   --seeds A..B       seeds A to B, both included (repeatable)
   --seed S           one seed (repeatable)
   --seed-file F      seeds from a file, one a line; '#' starts a comment
-  --algorithm X      swept (default), paper, ray-only, stock-A, stock-B or stock-E
+  --algorithm X      swept (default), discrete, paper, ray-only, stock-A, stock-B or stock-E
   --no-last-word     ThinTool without its last word after Bullet's soft solve (ToolOptions::separation)
   --no-holds         ThinTool without its holds in Bullet's soft solve (BulletSettings::holdInSolver)
   --hold-reach R     the holds reach R skins past the skin along their planes (BulletSettings::holdPlaneReach)
   --no-energy-guard  ThinTool without its energy guard after Bullet's soft solve (ToolOptions::energyGuard)
   --no-force-bound   the energy guard without its bound on the forces of the next step
                      (EnergyGuardSettings::boundForcesNextStep)
+  --within-thickness judge only the scenes in which every tool moved less than its own thickness in
+                     every step (the narrowest width of its thinnest piece); the rest run, and are
+                     counted apart
   --verbose          print each scene's description and every step's ground truth
   --scenes DIR       where vessel.obj is (default: the source tree's eval/scenes)
 )";
@@ -67,11 +70,12 @@ std::string formatNumber(double value) {
 }
 
 AlgorithmKind parseAlgorithm(const std::string& name) {
-  for (AlgorithmKind kind : {AlgorithmKind::Swept, AlgorithmKind::Paper, AlgorithmKind::RayOnly, AlgorithmKind::StockA,
-                             AlgorithmKind::StockB, AlgorithmKind::StockE}) {
+  for (AlgorithmKind kind : {AlgorithmKind::Swept, AlgorithmKind::Discrete, AlgorithmKind::Paper, AlgorithmKind::RayOnly,
+                             AlgorithmKind::StockA, AlgorithmKind::StockB, AlgorithmKind::StockE}) {
     if (name == algorithmKey(kind)) return kind;
   }
-  throw thintool::Error("--algorithm '" + name + "': expected swept, paper, ray-only, stock-A, stock-B or stock-E");
+  throw thintool::Error("--algorithm '" + name +
+                        "': expected swept, discrete, paper, ray-only, stock-A, stock-B or stock-E");
 }
 
 void printSteps(const RunResult& run) {
@@ -108,6 +112,7 @@ int main(int argc, char** argv) {
   std::optional<double> holdReach;
   bool energyGuard = true;
   bool boundForces = true;
+  bool withinThickness = false;
   std::string sceneFolder = THINTOOL_EVAL_SCENES;
   try {
     for (int i = 1; i < argc; ++i) {
@@ -140,6 +145,8 @@ int main(int argc, char** argv) {
         energyGuard = false;
       } else if (arg == "--no-force-bound") {
         boundForces = false;
+      } else if (arg == "--within-thickness") {
+        withinThickness = true;
       } else if (arg == "--verbose") {
         verbose = true;
       } else if (arg == "--scenes") {
@@ -163,6 +170,7 @@ int main(int argc, char** argv) {
   int failed = 0;
   int crossed = 0, inside = 0, pierced = 0, deep = 0, nonFinite = 0, energy = 0, refused = 0;
   int cutShort = 0;  // judged up to the step a kinematic tool reached a pinned node
+  int tooFast = 0;   // with --within-thickness: not judged, a tool moved its thickness or more in a step
   const auto begin = std::chrono::steady_clock::now();
   for (std::uint64_t seed : seeds) {
     Verdict verdict;
@@ -184,6 +192,11 @@ int main(int argc, char** argv) {
       RunResult run;
       verdict = runAndJudge(scene, options, &run);
       if (verbose) printSteps(run);
+      if (verbose) std::printf("the farthest step of a tool, over its thickness: %.4g\n", run.peakToolStepOverThickness);
+      if (withinThickness && !(run.peakToolStepOverThickness < 1)) {
+        ++tooFast;
+        continue;
+      }
     } catch (const thintool::Error& e) {
       verdict = refusedVerdict(e.what());
     }
@@ -198,16 +211,19 @@ int main(int argc, char** argv) {
     energy += verdict.energy;
     refused += verdict.refused;
     const std::string reach = holdReach.has_value() ? " --hold-reach " + formatNumber(*holdReach) : "";
-    std::printf("seed %llu failed: %s; reproduce: %s --seed %llu --algorithm %s%s%s%s%s%s --verbose\n",
+    std::printf("seed %llu failed: %s; reproduce: %s --seed %llu --algorithm %s%s%s%s%s%s%s --verbose\n",
                 static_cast<unsigned long long>(seed), joinReasons(verdict).c_str(), argv[0],
                 static_cast<unsigned long long>(seed), algorithmKey(algorithm), lastWord ? "" : " --no-last-word",
                 holds ? "" : " --no-holds", reach.c_str(), energyGuard ? "" : " --no-energy-guard",
-                boundForces ? "" : " --no-force-bound");
+                boundForces ? "" : " --no-force-bound", withinThickness ? " --within-thickness" : "");
     std::fflush(stdout);
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+  const std::string notJudged =
+      withinThickness ? "; " + std::to_string(tooFast) + " not judged: a tool moved its thickness or more in a step" : "";
   std::printf("%zu scenes, %d failed (crossed %d, inside %d, pierced %d, deep %d, non-finite %d, energy %d, "
-              "refused %d; %d judged up to a pinned node), %.1f s\n",
-              seeds.size(), failed, crossed, inside, pierced, deep, nonFinite, energy, refused, cutShort, seconds);
+              "refused %d; %d judged up to a pinned node%s), %.1f s\n",
+              seeds.size(), failed, crossed, inside, pierced, deep, nonFinite, energy, refused, cutShort,
+              notJudged.c_str(), seconds);
   return failed > 0 ? 1 : 0;
 }

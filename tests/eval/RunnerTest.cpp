@@ -50,6 +50,26 @@ TEST(Runner, TheSheetIsPiercedByThePaperAndCaughtBySweptDetection) {
   EXPECT_EQ(swept.truth.crossedNodes, 0);
 }
 
+TEST(Runner, AToolsStepIsMeasuredAgainstItsThickness) {
+  // The plate is 20 mm thick and goes straight down: at 1 m/s and 1/60 s it moves 16.7 mm a step,
+  // at 2 m/s 33.3 mm.
+  for (const double speed : {1.0, 2.0}) {
+    const RunResult result = run("plate_press.json", {"tools[0].trajectory.speed=" + std::to_string(speed)});
+    // Poses come back from Bullet's float build: to about a millionth.
+    EXPECT_NEAR(result.peakToolStepOverThickness, speed / 60 / 0.02, 1e-4) << speed << " m/s";
+  }
+}
+
+TEST(Runner, DiscreteIsThePapersDetectionWithTheLastWord) {
+  // The needle through the sheet: the paper's rays miss it, and so does the discrete detection the
+  // last word then answers.
+  const RunResult paper = run("sheet_pierce.json", {"algorithm=paper"});
+  const RunResult discrete = run("sheet_pierce.json", {"algorithm=discrete"});
+  EXPECT_GT(paper.truth.crossedNodes, 0);
+  EXPECT_EQ(discrete.truth.crossedNodes, 0);
+  EXPECT_EQ(discrete.truth.piercedSteps, 0);
+}
+
 TEST(Runner, TheForceErrorIsZeroAgainstItselfAndNaNWithoutAForce) {
   const RunResult coarse = run("plate_press.json", {"thintool.force=true", "tools[0].trajectory.speed=2"});
   const RunResult fine = run("plate_press.json", {"thintool.force=true", "tools[0].trajectory.speed=2", "step.dt=1/240"});
