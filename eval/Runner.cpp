@@ -257,15 +257,12 @@ ToolOptions optionsFor(const SceneSpec& scene, const ToolSpec& tool) {
 }
 
 // The narrowest extent of a convex solid across any of its faces' normals: a box's thinnest side.
-double narrowestWidth(const ConvexSolid& solid) {
+double narrowestWidth(const SolidDistance& solid) {
   double narrowest = std::numeric_limits<double>::infinity();
-  for (const Triangle& triangle : solid.triangles) {
-    const auto corner = [&](std::size_t k) { return solid.vertices[static_cast<std::size_t>(triangle[k])]; };
-    const Vec3 normal = normalizedOrZero(cross(corner(1) - corner(0), corner(2) - corner(0)));
-    if (normal == Vec3{}) continue;
+  for (const Vec3& normal : solid.faceNormals()) {
     double low = std::numeric_limits<double>::infinity();
     double high = -low;
-    for (const Vec3& v : solid.vertices) {
+    for (const Vec3& v : solid.solid().vertices) {
       low = std::min(low, double(dot(normal, v)));
       high = std::max(high, double(dot(normal, v)));
     }
@@ -381,7 +378,7 @@ RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
     for (const ToolPieceSpec& piece : tool.pieces) {
       pieces.push_back({SolidDistance(solidOf(piece)), piece.offset, int(t), !dynamic});
       for (const Vec3& v : solidOf(piece).vertices) reach = std::max(reach, length(piece.offset.apply(v)));
-      thickness = std::min(thickness, narrowestWidth(solidOf(piece)));
+      thickness = std::min(thickness, narrowestWidth(pieces.back().solid));
     }
     toolReach.push_back(reach);
     toolThickness.push_back(thickness);

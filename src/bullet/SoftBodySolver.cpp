@@ -849,8 +849,9 @@ void SoftBodySolver::findBackings(const btSoftBody& softBody) {
   }
 }
 
-// Whether a piece of any tool other than piece p of tool ends the step within a piece's width of
-// where piece p swept: near enough for the two to hold a soft face between them.
+// The pieces of any tool, other than piece p of tool, that end the step within a piece's width of
+// where piece p swept: near enough for the two to hold a soft face between them. One whose tool's
+// pose is not finite counts as near, its place unknown.
 void SoftBodySolver::findNearPieces(const Tool& tool, Index p, const PieceMotion& motion) {
   m_nearPieces.clear();
   const ToolModel& piece = tool.piece(p);
