@@ -67,6 +67,20 @@ NodeVerdict judgeNode(const ToolModel& piece, const PieceMotion& motion, const P
   const auto carries = [&](Index enter, Index leave) {
     return enter != kInvalidIndex && leave != kInvalidIndex && dot(planes[enter].normal, planes[leave].normal) < kTurnedAway;
   };
+  // On the arc the node may go in and come back out by the same face: it went through when, inside,
+  // it came nearer to a face turned away from the one it entered by than to that face, where the
+  // nearest face would have sent it out on the far side (generated seed 11856: a jaw turning 179°
+  // a step took a node 86 % of the way through its thickness and back, the chord through it).
+  const auto pastMidSurface = [&](Index enter, const Vec3& inside) {
+    if (enter == kInvalidIndex) return false;
+    const Real entryDistance = planes[enter].signedDistance(inside);
+    for (const Plane& plane : planes) {
+      if (dot(planes[enter].normal, plane.normal) < kTurnedAway && plane.signedDistance(inside) > entryDistance) {
+        return true;
+      }
+    }
+    return false;
+  };
   const Vec3 startLocal = motion.start().applyInverse(start);
   const Vec3 endLocal = motion.end().applyInverse(end);
   outEndLocal = endLocal;
@@ -85,7 +99,8 @@ NodeVerdict judgeNode(const ToolModel& piece, const PieceMotion& motion, const P
       const ClipResult clip = clipSegmentConvex(planes, 0, previous, current);
       if (clip.hit) {
         if (clip.enterPlane != kInvalidIndex) arcEntered = clip.enterPlane;
-        arcCarried = arcCarried || carries(arcEntered, clip.leavePlane);
+        arcCarried = arcCarried || carries(arcEntered, clip.leavePlane) ||
+                     pastMidSurface(arcEntered, previous + (current - previous) * clip.leave);
       }
       previous = current;
     }

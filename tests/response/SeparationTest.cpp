@@ -82,6 +82,24 @@ TEST(Separation, ATurnSweepsAlongItsArcNotItsChord) {
   EXPECT_LT(p.patch.positions[swept].x, -0.01);
 }
 
+TEST(Separation, ANodeTheArcTakesPastTheMidPlaneAndBackOutIsCarriedThrough) {
+  const ToolModel piece = plate();
+  // 170° about z in one step. The node starts just under the plate and moves straight in the world.
+  // On the arc it goes in by the bottom face, 18 mm up to 8 mm short of the top, and back out by
+  // the bottom; on the chord it goes in by the bottom and out by the top. It ends beside the rims,
+  // above the plate's mid-plane: both readings took it past the mid-plane inside the plate.
+  Pose end;
+  end.rotation = rotationAboutAxis({0, 0, 1}, kPi * 170 / 180);
+  const PieceMotion motion(Pose{}, end, SeparationSettings{}.maxTurnPerSample);
+  Patch p;
+  const Index v = p.node({-0.13, -0.0101, 0.01}, {0.27, -0.11, -0.28});
+  ASSERT_GT(end.applyInverse({0.27, -0.11, -0.28}).y, 0.05);
+  separateFromPiece(piece, motion, {}, p.patch);
+  EXPECT_EQ(p.patch.moved[v], 1);
+  const Vec3 local = end.applyInverse(p.patch.positions[v]);
+  EXPECT_NEAR(local.y, -0.01 - kClearance, 1e-9);
+}
+
 // A small upright face 0.35 m out from the plate's centre, at its level, that stays still while the
 // plate turns 120° about y in one step (its corners sweep the disc of radius 0.283 m). In the
 // plate's frame the face goes a third of the way round: on the chord no axis separates it on one

@@ -17,7 +17,9 @@
 ///   its arc, the rotation interpolated about one axis and sampled every `maxTurnPerSample`). A
 ///   node inside the piece leaves through the face its path entered by; a node whose path went in
 ///   by one face and out by a face turned away from it (carried through) goes back in front of
-///   the face it entered by, and under a turn only when both readings of the path, straight in
+///   the face it entered by. On the arc a path can come back out by the face it entered by; it was
+///   carried through when, inside, it came nearer to a face turned away from that one (past a
+///   plate's mid-plane). Under a turn the node goes back only when both readings of the path, straight in
 ///   the piece's frame and straight in the world against the arc, take it through (either alone
 ///   is wrong for some node: the first for one the turning piece never reached, the second for
 ///   one that rode on its face). The nearest face would send a node that crossed more than half
