@@ -85,6 +85,10 @@ struct PairState {
   double responseMicroseconds = 0;
   StockReason stock = StockReason::None;
   bool invalidPose = false;
+  /// The piece's pose where it stops a dynamic tool short of the patch's pinned nodes this step;
+  /// stopsAtPinned is false when it stops it at none (ToolAlgorithm::stopAtPinnedNodes).
+  Pose pinnedStopPose;
+  bool stopsAtPinned = false;
 
   void clearResults() {
     detection.contacts.clear();
@@ -100,6 +104,7 @@ struct PairState {
     responseMicroseconds = 0;
     stock = StockReason::None;
     invalidPose = false;
+    stopsAtPinned = false;
   }
 
   /// The broadphase pair is gone: nothing of the last step carries over to the next contact.

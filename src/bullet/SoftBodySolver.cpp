@@ -830,10 +830,12 @@ void SoftBodySolver::stopAtPinnedNodes(btRigidBody& tool, const ToolModel& piece
                                        Real inverseStep, const SoftBodyCache& cache, const btSoftBody& softBody) {
   const auto forEachPinned = [&](const auto& visit) {
     for (const Index id : cache.pinned) {
-      if (id < static_cast<Index>(softBody.m_nodes.size())) visit(toVec3(softBody.m_nodes[static_cast<int>(id)].m_x));
+      if (id < static_cast<Index>(softBody.m_nodes.size())) {
+        visit(piece, pieceEnd, toVec3(softBody.m_nodes[static_cast<int>(id)].m_x));
+      }
     }
   };
-  detail::stopShortOfPinnedNodes(tool, piece, pieceEnd, forEachPinned, inverseStep, false);
+  detail::stopShortOfPinnedNodes(tool, forEachPinned, inverseStep, false);
 }
 
 void SoftBodySolver::findBackings(const btSoftBody& softBody) {

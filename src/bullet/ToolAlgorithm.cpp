@@ -254,6 +254,9 @@ void ToolAlgorithm::processCollision(const btCollisionObjectWrapper* body0, cons
     step.swept = true;
     processPiece(step, toolWrap);
   }
+  if (btRigidBody* dynamicBody = m_tool.dynamicBody()) {
+    stopAtPinnedNodes(*dynamicBody, softBody, softBody.m_sst.sdt, nullptr);
+  }
 }
 
 void ToolAlgorithm::processPiece(PieceStep& step, const btCollisionObjectWrapper* toolWrap) {
@@ -446,16 +449,34 @@ void ToolAlgorithm::write(PieceStep& step) {
   // it past a pinned node it rests on. The tool is still where the step began: a dynamic tool's
   // sweep starts there, and an unswept piece is taken there.
   if (dynamicBody != nullptr && !forceReacts) {
-    const Pose& now = step.swept ? step.previousPose : step.pose;
-    const SoftPatch& patch = state.patch;
-    const Real inverseStep = Real(1) / Real(step.timeStep);
-    const auto forEachPinned = [&](const auto& visit) {
+    state.pinnedStopPose = step.swept ? step.previousPose : step.pose;
+    state.stopsAtPinned = true;
+    // A swept tool's pieces stop it together once all of them have reacted (processCollision).
+    if (!step.swept) stopAtPinnedNodes(*dynamicBody, step.softBody, step.timeStep, &state);
+  }
+}
+
+// The pinned nodes of one pair's patch stop the dynamic tool short of them, or, without a pair, those
+// of every pair of the tool with the soft body that stops it this step: a swept tool's pieces stop
+// it together, after every piece has reacted on it. One jaw's reaction turned a pair of jaws into a
+// pinned node that the other jaw's stop had kept them short of (generated seed 29819).
+void ToolAlgorithm::stopAtPinnedNodes(btRigidBody& tool, const btSoftBody& softBody, btScalar timeStep,
+                                      const PairState* single) {
+  const auto forEachPinned = [&](const auto& visit) {
+    const auto visitPair = [&](const PairState& state) {
+      if (!state.stopsAtPinned || state.softBody != &softBody) return;
+      const SoftPatch& patch = state.patch;
       for (Index v = 0; v < patch.vertexCount(); ++v) {
-        if (!(patch.inverseMasses[v] > 0)) visit(patch.positions[v]);
+        if (!(patch.inverseMasses[v] > 0)) visit(m_tool.m_pieces[state.piece], state.pinnedStopPose, patch.positions[v]);
       }
     };
-    stopShortOfPinnedNodes(*dynamicBody, step.model, now, forEachPinned, inverseStep, true);
-  }
+    if (single != nullptr) {
+      visitPair(*single);
+      return;
+    }
+    for (const auto& pair : m_tool.m_pairs) visitPair(*pair);
+  };
+  stopShortOfPinnedNodes(tool, forEachPinned, Real(1) / Real(timeStep), true);
 }
 
 void ToolAlgorithm::computeForces(PieceStep& step, btRigidBody* reactingBody) {

@@ -60,6 +60,9 @@ class ToolAlgorithm final : public btCollisionAlgorithm {
   void respond(PieceStep& step);
   void rememberSweep(PieceStep& step);
   void write(PieceStep& step);
+  // The dynamic tool stopped short of the pinned nodes of one pair, or of all its pairs with the soft
+  // body that stop it this step (single null).
+  void stopAtPinnedNodes(btRigidBody& tool, const btSoftBody& softBody, btScalar timeStep, const PairState* single);
   // The force model on the piece's contacts; reactingBody, when not null, receives the force.
   void computeForces(PieceStep& step, btRigidBody* reactingBody);
 

@@ -38,17 +38,18 @@ btScalar applyNodeReaction(btRigidBody& tool, const btVector3& nodePosition, con
 btScalar stopShortOfPinnedNode(btRigidBody& tool, const ToolModel& piece, const Pose& pieceNow, const Vec3& node,
                                Real inverseStep, bool forcesPending);
 
-/// stopShortOfPinnedNode at every pinned node forEachPinned(visit) visits (visit(const Vec3&),
-/// world). A stop at one node can turn the tool into another: the nodes are swept until no stop
-/// applies more than a settled impulse, at most eight times.
+/// stopShortOfPinnedNode at every pinned node forEachPinned(visit) visits, visit(piece, pieceNow,
+/// node) with node in world. A stop at one node can turn the tool into another, of the same piece
+/// or of another piece of the tool: the nodes are swept until no stop applies more than a settled
+/// impulse, at most eight times.
 template <typename ForEachPinned>
-void stopShortOfPinnedNodes(btRigidBody& tool, const ToolModel& piece, const Pose& pieceNow,
-                            const ForEachPinned& forEachPinned, Real inverseStep, bool forcesPending) {
+void stopShortOfPinnedNodes(btRigidBody& tool, const ForEachPinned& forEachPinned, Real inverseStep,
+                            bool forcesPending) {
   constexpr int kMostSweeps = 8;
   constexpr btScalar kSettledImpulse = btScalar(1e-7);  // N s
   for (int sweep = 0; sweep < kMostSweeps; ++sweep) {
     btScalar largest = 0;
-    forEachPinned([&](const Vec3& node) {
+    forEachPinned([&](const ToolModel& piece, const Pose& pieceNow, const Vec3& node) {
       const btScalar impulse = stopShortOfPinnedNode(tool, piece, pieceNow, node, inverseStep, forcesPending);
       if (impulse > largest) largest = impulse;
     });
