@@ -71,6 +71,8 @@ NodeVerdict judgeNode(const ToolModel& piece, const PieceMotion& motion, const P
   // it came nearer to a face turned away from the one it entered by than to that face, where the
   // nearest face would have sent it out on the far side (generated seed 11856: a jaw turning 179°
   // a step took a node 86 % of the way through its thickness and back, the chord through it).
+  // Plane distances are linear along a sample interval, and its inside part begins on the entry
+  // face or where the last one ended, so the end of each inside part is the only point to test.
   const auto pastMidSurface = [&](Index enter, const Vec3& inside) {
     if (enter == kInvalidIndex) return false;
     const Real entryDistance = planes[enter].signedDistance(inside);

@@ -19,10 +19,10 @@
 ///   by one face and out by a face turned away from it (carried through) goes back in front of
 ///   the face it entered by. On the arc a path can come back out by the face it entered by; it was
 ///   carried through when, inside, it came nearer to a face turned away from that one (past a
-///   plate's mid-plane). Under a turn the node goes back only when both readings of the path, straight in
-///   the piece's frame and straight in the world against the arc, take it through (either alone
-///   is wrong for some node: the first for one the turning piece never reached, the second for
-///   one that rode on its face). The nearest face would send a node that crossed more than half
+///   plate's mid-plane). Under a turn the node goes back only when both readings of the path,
+///   straight in the piece's frame and straight in the world against the arc, take it through
+///   (either alone is wrong for some node: the first for one the turning piece never reached, the
+///   second for one that rode on its face). The nearest face would send a node that crossed more than half
 ///   the piece's thickness out of the far side. Where both readings are wrong together, a piece
 ///   that ends inside a closed body it was outside of, the glue reads the motion along the chord
 ///   alone (PieceMotion::alongChord) or carries the faces crossed on the arc (carryCrossedFaces).
