@@ -1,0 +1,116 @@
+// SPDX-License-Identifier: Zlib
+// Copyright (c) 2026 The ThinTool developers
+//
+// The whole of btSoftRigidDynamicsWorld::stepSimulation, stock Bullet (baseline.md's variant E)
+// against ThinTool's defaults, on HandlerBench.cpp's scene: the plate pressing a soft ball of 128
+// to 65,536 faces with a 50 mm margin, without gravity and pressure. HandlerBench times one stage;
+// what a program pays is the step, which also holds the costs a stage's clock cannot see: the soft
+// solve (ThinTool's copy of Bullet's, with its last word), and Bullet's upkeep of structures the
+// stage asks for (predictMotion refits the soft body's face tree in every step once ThinTool's
+// gather has built it; stock Bullet builds none for this ball).
+//
+// Each iteration builds the scene (untimed), brings the plate down at 1 m/s from clear of the
+// margin until its underside is a depth below the ball's top (the second argument, mm: 5 mm as
+// HandlerBench's last step, 30 mm pressed in), and holds it there for half a second; the steps
+// from the first in which the plate is within the margin to the end are timed one by one, and the
+// iteration's time is their mean. stageUs and lastWordUs are ThinTool's own clocks over the same
+// steps (Tool::report: detection and response; the last word, with the pass over the nodes that it
+// shares with Bullet's velocity update). scripts/step-table.py runs them and prints the real-time
+// table of docs/results/evaluation.md.
+//
+// Deviations from a run: no gravity or pressure (as HandlerBench, so that no settling is needed at
+// 65,536 faces), a kinematic plate.
+
+#include <SoftBallScene.h>
+
+#include <thintool/thintool.h>
+
+#include <BulletSoftBody/btSoftBody.h>
+#include <BulletSoftBody/btSoftRigidDynamicsWorld.h>
+
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+
+namespace thintool::scenes {
+namespace {
+
+constexpr double kTimeStep = 1.0 / 60;
+constexpr double kSpeed = 1;         // m/s: 16.7 mm a step
+constexpr double kMargin = 0.05;     // m: the ball's margin, ThinTool's skin
+constexpr double kClearance = 0.08;  // m: the underside above the top at the start
+constexpr int kHoldSteps = 30;     // half a second
+
+void run(benchmark::State& state, Algorithm algorithm) {
+  const int faces = static_cast<int>(state.range(0));
+  const double depth = 0.001 * static_cast<double>(state.range(1));  // m
+  double stepSum = 0;
+  double stageSum = 0;
+  double lastWordSum = 0;
+  int timed = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    SceneSettings settings;
+    settings.algorithm = algorithm;
+    settings.ballResolution = faces / 2 - 1;  // CreateEllipsoid's points make 2·(res + 1) faces
+    settings.exactBallHull = true;
+    settings.timeStep = kTimeStep;
+    settings.settleSeconds = 0;
+    settings.toolOptions.sampling.spacing = 0.051;  // 576 sample nodes, as HandlerBench
+    SoftBallScene scene(settings);
+    scene.ball().getCollisionShape()->setMargin(btScalar(kMargin));
+    scene.ball().m_cfg.kPR = 0;
+    scene.world().setGravity(btVector3(0, 0, 0));
+    scene.world().getWorldInfo().m_gravity = btVector3(0, 0, 0);
+    if (scene.ball().m_faces.size() != faces) {
+      state.SkipWithError("the ball does not have the faces asked for");
+      return;
+    }
+    const double halfThickness = scene.toolBox().halfExtents.y;
+    const double top = scene.ballTop();
+    if (Tool* tool = scene.tool()) tool->resetMotion();  // from where the tool was parked: a jump
+    double iterationSeconds = 0;
+    int iterationSteps = 0;
+    double underside = top + kClearance;
+    for (int hold = 0; hold < kHoldSteps;) {
+      underside = std::max(underside - kSpeed * kTimeStep, top - depth);
+      if (underside <= top - depth) ++hold;
+      const double microseconds = scene.step(btTransform(btQuaternion::getIdentity(),
+                                                         scene.aboveBall(underside + halfThickness)));
+      if (underside > top + kMargin) continue;  // not yet within the margin: untimed
+      iterationSeconds += microseconds * 1e-6;
+      ++iterationSteps;
+      if (Tool* tool = scene.tool()) {
+        const ToolDiagnostics& d = tool->report().diagnostics;
+        stageSum += d.detectionMicroseconds + d.responseMicroseconds;
+        lastWordSum += d.lastWord.microseconds;
+      }
+    }
+    stepSum += iterationSeconds * 1e6;
+    timed += iterationSteps;
+    state.SetIterationTime(iterationSeconds / iterationSteps);
+    state.ResumeTiming();
+  }
+  if (timed == 0) return;
+  state.counters["softFaces"] = faces;
+  state.counters["stepsTimed"] = timed;
+  state.counters["stepUs"] = stepSum / timed;
+  if (algorithm == Algorithm::ThinTool) {
+    state.counters["stageUs"] = stageSum / timed;
+    state.counters["lastWordUs"] = lastWordSum / timed;
+  }
+}
+
+void StockStep(benchmark::State& state) { run(state, Algorithm::StockE); }
+void ThinToolStep(benchmark::State& state) { run(state, Algorithm::ThinTool); }
+
+// Arguments: the ball's faces, and the depth the plate holds at (mm). One iteration each: the
+// table's script asks for repetitions (scripts/step-table.py).
+#define THINTOOL_STEP_SIZES                                                                         \
+  ->ArgsProduct({{128, 1024, 4096, 16384, 65536}, {5, 30}})->UseManualTime()->Iterations(1) \
+      ->Unit(benchmark::kMicrosecond)
+BENCHMARK(StockStep)->Name("WholeStep/Stock") THINTOOL_STEP_SIZES;
+BENCHMARK(ThinToolStep)->Name("WholeStep/ThinTool") THINTOOL_STEP_SIZES;
+
+}  // namespace
+}  // namespace thintool::scenes
