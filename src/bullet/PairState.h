@@ -12,6 +12,7 @@
 #include <thintool/force/ContactForce.h>
 #include <thintool/response/Response.h>
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -57,7 +58,8 @@ struct PairState {
   SoftPatch patch;
   std::vector<Index> patchVertexOfNode;  ///< soft node -> patch vertex, kInvalidIndex when absent
   std::vector<const btDbvtNode*> traversalStack;
-  std::vector<Index> candidateFaces;  ///< faces whose tree leaves met the gather's walk
+  std::vector<Index> candidateFaces;  ///< faces the gather listed
+  std::vector<std::array<Index, 3>> faceCorners;  ///< each soft face's node indices, for the scan
   /// Face count the topology facts below were computed for.
   int facesSeen = -1;
   /// The skin the pair keeps (m): ToolOptions::skin, or less while it grows after a first step

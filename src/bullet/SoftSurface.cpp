@@ -3,6 +3,7 @@
 #include "SoftSurface.h"
 
 #include <thintool/bullet/Convert.h>
+#include <thintool/core/Assert.h>
 #include <thintool/geometry/RayTriangle.h>
 
 #include <BulletSoftBody/btSoftBody.h>
@@ -213,15 +214,28 @@ int surfaceOrientation(const btSoftBody& softBody) {
   return 0;
 }
 
-Index gatherPatch(btSoftBody& softBody, const Aabb& toolBox, Real displacementBound, Real leafSlack, bool widen,
-                  PairState& state) {
-  Index walked = 0;
+namespace {
+
+// The rounding allowance for a box compared with Bullet's volumes, which it rounded in btScalar.
+Real roundingOf(const Aabb& box) {
+  const Real magnitude = std::max({std::abs(box.min.x), std::abs(box.min.y), std::abs(box.min.z),
+                                   std::abs(box.max.x), std::abs(box.max.y), std::abs(box.max.z)});
+  return 4 * Real(std::numeric_limits<btScalar>::epsilon()) * (1 + magnitude);
+}
+
+// The gather's runs: listFaces(bound) puts the candidate faces for the tool's box grown by bound in
+// state.candidateFaces, and each of them whose motion meets the box joins the patch. Returns the
+// candidates over all runs.
+template <class ListFaces>
+Index gatherCandidates(btSoftBody& softBody, const Aabb& toolBox, Real displacementBound, bool widen,
+                       PairState& state, const ListFaces& listFaces) {
+  Index listed = 0;
   SoftPatch& patch = state.patch;
   if (state.patchVertexOfNode.size() != static_cast<std::size_t>(softBody.m_nodes.size())) {
     state.patchVertexOfNode.assign(softBody.m_nodes.size(), kInvalidIndex);
   }
-  // Bullet's leaf volumes bound each face where it ends the step, grown by the soft margin; a face
-  // that starts near the tool and ends away from it lies up to its displacement farther out.
+  // A walk lists faces by where they end the step; a face that starts near the tool and ends away
+  // from it lies up to its displacement farther out. (A scan lists by the whole motion.)
   Real bound = std::max<Real>(displacementBound, 0);
   for (int attempt = 0; attempt < 3; ++attempt) {
     if (attempt > 0) {
@@ -229,29 +243,13 @@ Index gatherPatch(btSoftBody& softBody, const Aabb& toolBox, Real displacementBo
     }
     patch.clear();
     Real largestSquared = 0;
-    // A leaf spans its face grown by the slack, so shrinking the walk's box by the slack keeps
-    // every leaf whose face meets the grown box; Bullet rounded the leaf in btScalar, which the
-    // rounding allowance covers. The test compares interval ends only, so it stays right for a
-    // box shrunk past empty.
-    const Aabb grown = toolBox.expanded(bound);
-    const Real magnitude = std::max({std::abs(grown.min.x), std::abs(grown.min.y), std::abs(grown.min.z),
-                                     std::abs(grown.max.x), std::abs(grown.max.y), std::abs(grown.max.z)});
-    const Real rounding = 4 * Real(std::numeric_limits<btScalar>::epsilon()) * (1 + magnitude);
-    const btDbvtVolume walkBox = toVolume(grown.expanded(rounding - leafSlack));
-    // First the faces whose leaves meet the walk, in the tree's order, then their nodes: reading
-    // the nodes a few faces ahead of their use hides the wait for memory that reading them in the
-    // walk would add to each leaf.
     state.candidateFaces.clear();
-    walk(softBody.m_fdbvt.m_root, state.traversalStack,
-         [&](const btDbvtVolume& volume) { return Intersect(volume, walkBox); },
-         [&](const btDbvtNode* leaf) {
-           prefetch(leaf->data);
-           state.candidateFaces.push_back(faceIndex(softBody, static_cast<const btSoftBody::Face*>(leaf->data)));
-           return true;
-         });
+    listFaces(bound);
+    // The faces' nodes are read a few faces ahead of their use, which hides the wait for memory
+    // that reading them one face at a time would add to each face: soft nodes lie scattered.
     constexpr std::size_t kLookAhead = 8;
     const std::size_t candidateCount = state.candidateFaces.size();
-    walked += static_cast<Index>(candidateCount);
+    listed += static_cast<Index>(candidateCount);
     for (std::size_t c = 0; c < candidateCount; ++c) {
       if (c + kLookAhead < candidateCount) {
         const btSoftBody::Face& ahead = softBody.m_faces[static_cast<int>(state.candidateFaces[c + kLookAhead])];
@@ -268,7 +266,76 @@ Index gatherPatch(btSoftBody& softBody, const Aabb& toolBox, Real displacementBo
     }
     bound = 2 * largestDisplacement;
   }
-  return walked;
+  return listed;
+}
+
+}  // namespace
+
+Index gatherPatch(btSoftBody& softBody, const Aabb& toolBox, Real displacementBound, Real leafSlack, bool widen,
+                  PairState& state) {
+  return gatherCandidates(softBody, toolBox, displacementBound, widen, state, [&](Real bound) {
+    // A leaf spans its face grown by the slack, so shrinking the walk's box by the slack keeps
+    // every leaf whose face meets the grown box; Bullet rounded the leaf in btScalar, which the
+    // rounding allowance covers. The test compares interval ends only, so it stays right for a
+    // box shrunk past empty.
+    const Aabb grown = toolBox.expanded(bound);
+    const btDbvtVolume walkBox = toVolume(grown.expanded(roundingOf(grown) - leafSlack));
+    walk(softBody.m_fdbvt.m_root, state.traversalStack,
+         [&](const btDbvtVolume& volume) { return Intersect(volume, walkBox); },
+         [&](const btDbvtNode* leaf) {
+           prefetch(leaf->data);
+           state.candidateFaces.push_back(faceIndex(softBody, static_cast<const btSoftBody::Face*>(leaf->data)));
+           return true;
+         });
+  });
+}
+
+void readFaceCorners(const btSoftBody& softBody, std::vector<std::array<Index, 3>>& corners) {
+  corners.resize(static_cast<std::size_t>(softBody.m_faces.size()));
+  for (int f = 0; f < softBody.m_faces.size(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      corners[static_cast<std::size_t>(f)][static_cast<std::size_t>(k)] =
+          nodeIndex(softBody, softBody.m_faces[f].m_n[k]);
+    }
+  }
+}
+
+Index gatherPatchByScan(btSoftBody& softBody, const Aabb& toolBox, PairState& state) {
+  const int faceCount = softBody.m_faces.size();
+  THINTOOL_ASSERT(state.faceCorners.size() == static_cast<std::size_t>(faceCount));
+  return gatherCandidates(softBody, toolBox, 0, false, state, [&](Real /*bound*/) {
+    if (faceCount == 0) return;
+    // The corners come from the pair's compact copy of the faces' node indices, not from Bullet's
+    // faces, whose size would make the scan read several times the memory; the nodes are asked
+    // for a few faces ahead.
+    const btSoftBody::Node* nodes = &softBody.m_nodes[0];
+    constexpr int kLookAhead = 8;
+    for (int f = 0; f < faceCount; ++f) {
+      if (f + kLookAhead < faceCount) {
+        for (const Index n : state.faceCorners[static_cast<std::size_t>(f + kLookAhead)]) prefetch(&nodes[n].m_x);
+      }
+      const std::array<Index, 3>& corners = state.faceCorners[static_cast<std::size_t>(f)];
+      // The box of the face's motion, as gatherFace bounds it. A face with a node that is not
+      // finite is listed all the same: detection skips and counts it.
+      btVector3 low = nodes[corners[0]].m_x;
+      btVector3 high = low;
+      for (const Index n : corners) {
+        low.setMin(nodes[n].m_x);
+        low.setMin(nodes[n].m_q);
+        high.setMax(nodes[n].m_x);
+        high.setMax(nodes[n].m_q);
+      }
+      Aabb motion{toVec3(low), toVec3(high)};
+      for (const Index n : corners) {
+        if (state.sweptNodes.stampedLastStep(n)) motion.include(state.lastPositions[n]);
+      }
+      bool finite = true;
+      for (const Index n : corners) {
+        finite = finite && std::isfinite(nodes[n].m_x.length2() + nodes[n].m_q.length2());
+      }
+      if (!finite || motion.overlaps(toolBox)) state.candidateFaces.push_back(static_cast<Index>(f));
+    }
+  });
 }
 
 Real softBodyMotion(const btSoftBody& softBody, PairState& state) {

@@ -2,8 +2,11 @@
 // Copyright (c) 2026 The ThinTool developers
 #pragma once
 
-// Reading a btSoftBody's surface into the core's plain data, through the soft body's own face
-// tree (btSoftBody::m_fdbvt), so that only faces near the tool are visited.
+// Reading a btSoftBody's surface near a tool into the core's plain data. The paper's detection,
+// whose reverse rays cross the whole body, walks the soft body's face tree (btSoftBody::m_fdbvt),
+// which it builds if absent; Bullet then refits every leaf of it in each predictMotion. Swept
+// detection walks that tree when it exists, and otherwise scans the faces' end positions, which
+// costs a step less than Bullet's refit (benchmarks/bullet/WholeStepBench.cpp).
 
 #include "PairState.h"
 
@@ -59,6 +62,16 @@ int surfaceOrientation(const btSoftBody& softBody);
 /// faces the walk met, over all its runs.
 Index gatherPatch(btSoftBody& softBody, const Aabb& toolBox, Real displacementBound, Real leafSlack, bool widen,
                  PairState& state);
+
+/// Each of the soft body's faces as the indices of its three nodes.
+void readFaceCorners(const btSoftBody& softBody, std::vector<std::array<Index, 3>>& corners);
+
+/// Fills state.patch with the faces whose motion in the step meets toolBox, as gatherPatch does,
+/// reading every face's nodes instead of walking a tree: each face's start, predicted end and last
+/// sweep's end are tested, so that no face is missed however fast it moved. The faces are gathered
+/// in the order of their indices. state.faceCorners must hold the soft body's faces
+/// (readFaceCorners). Returns the faces listed for the gather.
+Index gatherPatchByScan(btSoftBody& softBody, const Aabb& toolBox, PairState& state);
 
 /// How far the soft body as a whole moved this step (m): the largest move of a side of its node
 /// tree's bounds since the pair's last step, or, in the pair's first step, the largest move of any

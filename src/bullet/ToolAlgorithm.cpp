@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <memory>
 
 namespace thintool::detail {
@@ -306,17 +307,20 @@ void ToolAlgorithm::processValidPiece(PieceStep& step) {
   step.state.responseMicroseconds = microsecondsBetween(detected, Clock::now());
 }
 
-// The face tree, and the pair's buffers at the soft body's size, whenever its faces change.
+// The face tree, unless the pair scans the faces, and the pair's buffers at the soft body's size,
+// whenever its faces change.
 void ToolAlgorithm::prepareBuffers(PieceStep& step) {
   PairState& state = step.state;
   btSoftBody& softBody = step.softBody;
-  if (ensureFaceTree(softBody) && m_tool.m_pass != nullptr) {
+  const bool scans = step.swept && m_tool.m_options.bullet.scanFaces;
+  if (!scans && ensureFaceTree(softBody) && m_tool.m_pass != nullptr) {
     m_tool.m_pass->recordUnfittedTree();
   }
   if (state.facesSeen == softBody.m_faces.size()) {
     return;
   }
   state.facesSeen = softBody.m_faces.size();
+  readFaceCorners(softBody, state.faceCorners);
   state.patch.orientation = surfaceOrientation(softBody);
   state.patch.positions.reserve(softBody.m_nodes.size());
   state.patch.previousPositions.reserve(softBody.m_nodes.size());
@@ -346,13 +350,19 @@ void ToolAlgorithm::gather(PieceStep& step) {
   if (step.swept) {
     reach.include(transformedBounds(step.model.bounds, step.previousPose));
   }
-  // Swept: the faces that meet the tool's whole motion during theirs, looked for first twice as far
-  // out as the soft nodes near the tool moved last step (the solver's pull adds to the motion), or
-  // as the soft body moved as a whole this step, if farther.
-  const Real motionBound = step.swept ? std::max(2 * state.softReach, softBodyMotion(softBody, state)) : 0;
-  const CollisionPass* pass = m_tool.m_pass;
-  const Real leafSlack = pass != nullptr ? faceLeafSlack(softBody, pass->nodeTravel()) : 0;
-  step.facesWalked = gatherPatch(softBody, reach.expanded(step.fullSkin), motionBound, leafSlack, step.swept, state);
+  // Swept: the faces that meet the tool's whole motion during theirs. Scanned (BulletSettings::
+  // scanFaces), every face's motion is read, where no tree exists. Walked, the tree is searched
+  // first twice as far out as the soft nodes near the tool moved last step (the solver's pull
+  // adds to the motion), or as the soft body moved as a whole this step, if farther.
+  if (step.swept && m_tool.m_options.bullet.scanFaces && softBody.m_fdbvt.empty()) {
+    step.facesWalked = gatherPatchByScan(softBody, reach.expanded(step.fullSkin), state);
+  } else {
+    const Real motionBound = step.swept ? std::max(2 * state.softReach, softBodyMotion(softBody, state)) : 0;
+    const CollisionPass* pass = m_tool.m_pass;
+    const Real nodeTravel = pass != nullptr ? pass->nodeTravel() : std::numeric_limits<Real>::infinity();
+    step.facesWalked = gatherPatch(softBody, reach.expanded(step.fullSkin), motionBound,
+                                   faceLeafSlack(softBody, nodeTravel), step.swept, state);
+  }
   step.skin = pairSkin(state, step.model, step.previousPose, step.fullSkin,
                        options.skinGrowthSpeed * Real(step.timeStep));
 }

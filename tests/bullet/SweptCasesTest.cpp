@@ -86,9 +86,10 @@ TEST(SweptCases, AToolThatJumpsThroughAThinSheetInOneStepIsCaught) {
 // A free 0.2 × 0.2 m sheet thrown up at 15 m/s at the plate standing still 10 cm above it: at 60 Hz
 // it goes from 9 cm below the plate's underside to 14 cm above its top in one step, where nothing
 // of it was near the plate the step before. Smaller than the plate, it has no way round it. Returns
-// the crossings of the plate's mid-plane in its footprint, and the sheet's highest node at the end.
-RunMetrics thrownSheet(btScalar& outHighest) {
-  SheetUnderPlate scene(0.1, 5, false, 0.02, ToolOptions{});
+// the crossings of the plate's mid-plane in its footprint, the sheet's highest node at the end, and
+// whether the sheet got a face tree.
+RunMetrics thrownSheet(const ToolOptions& options, btScalar& outHighest, bool& outFaceTree) {
+  SheetUnderPlate scene(0.1, 5, false, 0.02, options);
   btSoftBody& sheet = *scene.sheet;
   ToolBox box;
   box.origin = {0, 1.1, 0};
@@ -112,14 +113,28 @@ RunMetrics thrownSheet(btScalar& outHighest) {
   for (int i = 0; i < sheet.m_nodes.size(); ++i) {
     outHighest = btMax(outHighest, sheet.m_nodes[i].m_x.y());
   }
+  outFaceTree = !sheet.m_fdbvt.empty();
   return truth.metrics();
 }
 
 TEST(SweptCases, ASheetThrownThroughAStillToolInOneStepIsCaught) {
   btScalar highest = 0;
-  const RunMetrics m = thrownSheet(highest);
+  bool faceTree = false;
+  const RunMetrics m = thrownSheet(ToolOptions{}, highest, faceTree);
   EXPECT_EQ(m.crossed, 0);
   EXPECT_LT(highest, 1.09) << "the sheet stops under the plate";
+  EXPECT_TRUE(faceTree) << "the gather walks the face tree it built";
+}
+
+TEST(SweptCases, ASheetThrownThroughAStillToolIsCaughtByTheScanOfItsFacesWithoutATree) {
+  ToolOptions options;
+  options.bullet.scanFaces = true;
+  btScalar highest = 0;
+  bool faceTree = true;
+  const RunMetrics m = thrownSheet(options, highest, faceTree);
+  EXPECT_EQ(m.crossed, 0);
+  EXPECT_LT(highest, 1.09) << "the sheet stops under the plate";
+  EXPECT_FALSE(faceTree) << "no face tree for Bullet to refit in every step";
 }
 
 TEST(SweptCases, AFastSwipeAcrossTheBallKeepsEveryNodeUnderThePlate) {

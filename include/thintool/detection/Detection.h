@@ -86,8 +86,8 @@ struct Contact {
 
 struct DetectionCounters {
   Index facesGathered = 0;   ///< soft faces in the patch
-  /// Soft faces the glue's walk of the soft body's face tree met, the patch's candidates (0 when
-  /// the patch came from elsewhere).
+  /// Soft faces the glue listed as the patch's candidates, by its walk of the soft body's face tree
+  /// or its scan of the faces' motion (0 when the patch came from elsewhere).
   Index facesWalked = 0;
   Index nodesTested = 0;     ///< tool nodes whose ray was tested against at least one face
   Index triangleTests = 0;   ///< segment–triangle tests run
