@@ -251,6 +251,7 @@ ToolOptions optionsFor(const SceneSpec& scene, const ToolSpec& tool) {
   options.separation.enabled = options.separation.enabled && scene.lastWord;
   options.bullet.holdInSolver = options.bullet.holdInSolver && scene.holds;
   if (scene.holdPlaneReach.has_value()) options.bullet.holdPlaneReach = Real(*scene.holdPlaneReach);
+  options.bullet.scanFaces = scene.scanFaces;
   options.energyGuard.enabled = options.energyGuard.enabled && scene.energyGuard;
   options.energyGuard.boundForcesNextStep = options.energyGuard.boundForcesNextStep && scene.boundForces;
   return options;

@@ -146,6 +146,7 @@ struct SceneSpec {
   std::optional<double> holdPlaneReach;  ///< ThinTool: how far the holds reach along their planes (BulletSettings::holdPlaneReach); unset, the library's default
   bool energyGuard = true;     ///< ThinTool: the energy guard after the soft solver (ToolOptions::energyGuard); "paper" and "ray-only" never have it
   bool boundForces = true;     ///< ThinTool: with the energy guard, the bound on the forces in the step after a guarded one (EnergyGuardSettings::boundForcesNextStep)
+  bool scanFaces = false;      ///< ThinTool: swept detection reads every soft face instead of walking a face tree (BulletSettings::scanFaces)
 };
 
 /// An override applied to the file's JSON before it is read: path=value, the path in dots and

@@ -42,6 +42,8 @@ inside the soft body, pierced faces, penetration deeper than 0.1 mm, non-finite 
   --no-energy-guard  ThinTool without its energy guard after Bullet's soft solve (ToolOptions::energyGuard)
   --no-force-bound   the energy guard without its bound on the forces of the next step
                      (EnergyGuardSettings::boundForcesNextStep)
+  --scan-faces       swept detection reads every soft face instead of walking a face tree
+                     (BulletSettings::scanFaces)
   --within-thickness judge only the scenes in which every tool moved less than its own thickness in
                      every step (the narrowest width of its thinnest piece); the rest run, and are
                      counted apart
@@ -112,6 +114,7 @@ int main(int argc, char** argv) {
   std::optional<double> holdReach;
   bool energyGuard = true;
   bool boundForces = true;
+  bool scanFaces = false;
   bool withinThickness = false;
   std::string sceneFolder = THINTOOL_EVAL_SCENES;
   try {
@@ -145,6 +148,8 @@ int main(int argc, char** argv) {
         energyGuard = false;
       } else if (arg == "--no-force-bound") {
         boundForces = false;
+      } else if (arg == "--scan-faces") {
+        scanFaces = true;
       } else if (arg == "--within-thickness") {
         withinThickness = true;
       } else if (arg == "--verbose") {
@@ -182,6 +187,7 @@ int main(int argc, char** argv) {
       scene.holdPlaneReach = holdReach;
       scene.energyGuard = energyGuard;
       scene.boundForces = boundForces;
+      scene.scanFaces = scanFaces;
       if (verbose) std::printf("%s\n", describeScene(scene).c_str());
       RunOptions options;
       if (verbose) {
@@ -211,11 +217,12 @@ int main(int argc, char** argv) {
     energy += verdict.energy;
     refused += verdict.refused;
     const std::string reach = holdReach.has_value() ? " --hold-reach " + formatNumber(*holdReach) : "";
-    std::printf("seed %llu failed: %s; reproduce: %s --seed %llu --algorithm %s%s%s%s%s%s%s --verbose\n",
+    std::printf("seed %llu failed: %s; reproduce: %s --seed %llu --algorithm %s%s%s%s%s%s%s%s --verbose\n",
                 static_cast<unsigned long long>(seed), joinReasons(verdict).c_str(), argv[0],
                 static_cast<unsigned long long>(seed), algorithmKey(algorithm), lastWord ? "" : " --no-last-word",
                 holds ? "" : " --no-holds", reach.c_str(), energyGuard ? "" : " --no-energy-guard",
-                boundForces ? "" : " --no-force-bound", withinThickness ? " --within-thickness" : "");
+                boundForces ? "" : " --no-force-bound", scanFaces ? " --scan-faces" : "",
+                withinThickness ? " --within-thickness" : "");
     std::fflush(stdout);
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
