@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Prints the real-time table (docs/results/evaluation.md): stock Bullet's whole step against ThinTool's.
 
-Runs benchmarks/bullet/WholeStepBench.cpp's rows (WholeStep/Stock and WholeStep/ThinTool at each
-<faces>/<depth mm>) with repetitions in random order and keeps each row's fastest repetition, as
+Runs benchmarks/bullet/WholeStepBench.cpp's rows (WholeStep/Stock, WholeStep/ThinTool and
+WholeStep/ThinToolScan, BulletSettings::scanFaces, at each <faces>/<depth mm>) with repetitions in random order and keeps each row's fastest repetition, as
 handler-table.py does, then prints one markdown row per size and depth, and for each step budget
 the largest of the balls whose mean step fits it. Needs a Release build in ./build (see README):
 
@@ -34,23 +34,26 @@ def number(value):
     return f"{value:,.0f}" if value >= 100 else (f"{value:.1f}" if value >= 10 else f"{value:.2f}")
 
 
-print("| faces, depth | stock E: step (µs) | ThinTool: step (µs) | ratio ThinTool / stock "
-      "| ThinTool's clocks: stage + last word (µs) | their share of ThinTool's step |")
-print("|---|---|---|---|---|---|")
+print("| faces, depth | stock E: step (µs) | ThinTool: step (µs) | ratio to stock "
+      "| ThinTool's clocks: stage + last word (µs) | ThinTool scanning: step (µs) | ratio to stock "
+      "| its clocks: stage + last word (µs) |")
+print("|---|---|---|---|---|---|---|---|")
 sizes = sorted({(faces, depth) for (_, faces, depth) in fastest}, key=lambda k: (k[1], k[0]))
 for faces, depth in sizes:
     stock = fastest[("Stock", faces, depth)]["stepUs"]
     tool = fastest[("ThinTool", faces, depth)]
-    own = tool["stageUs"] + tool["lastWordUs"]
+    scan = fastest[("ThinToolScan", faces, depth)]
     print(f"| {faces:,}, {depth} mm | {number(stock)} | {number(tool['stepUs'])} | {tool['stepUs'] / stock:.2f} "
-          f"| {number(tool['stageUs'])} + {number(tool['lastWordUs'])} | {own / tool['stepUs']:.0%} |")
+          f"| {number(tool['stageUs'])} + {number(tool['lastWordUs'])} "
+          f"| {number(scan['stepUs'])} | {scan['stepUs'] / stock:.2f} "
+          f"| {number(scan['stageUs'])} + {number(scan['lastWordUs'])} |")
 print()
 for budget in (1000, 1e6 / 60):
     for depth in sorted({depth for (_, _, depth) in fastest}):
         fits = {}
-        for name in ("Stock", "ThinTool"):
+        for name in ("Stock", "ThinTool", "ThinToolScan"):
             within = [faces for (n, faces, d), row in fastest.items()
                       if n == name and d == depth and row["stepUs"] <= budget]
             fits[name] = f"{max(within):,} faces" if within else "none of these balls"
         print(f"- {budget / 1000:.1f} ms budget, {depth} mm deep: stock E {fits['Stock']}, "
-              f"ThinTool {fits['ThinTool']}")
+              f"ThinTool {fits['ThinTool']}, scanning {fits['ThinToolScan']}")

@@ -2,12 +2,13 @@
 // Copyright (c) 2026 The ThinTool developers
 //
 // The whole of btSoftRigidDynamicsWorld::stepSimulation, stock Bullet (baseline.md's variant E)
-// against ThinTool's defaults, on HandlerBench.cpp's scene: the plate pressing a soft ball of 128
-// to 65,536 faces with a 50 mm margin, without gravity and pressure. HandlerBench times one stage;
-// what a program pays is the step, which also holds the costs a stage's clock cannot see: the soft
-// solve (ThinTool's copy of Bullet's, with its last word), and Bullet's upkeep of structures the
-// stage asks for (predictMotion refits the soft body's face tree in every step once ThinTool's
-// gather has built it; stock Bullet builds none for this ball).
+// against ThinTool's defaults, and against ThinTool scanning the faces (BulletSettings::scanFaces),
+// on HandlerBench.cpp's scene: the plate pressing a soft ball of 128 to 65,536 faces with a 50 mm
+// margin, without gravity and pressure. HandlerBench times one stage; what a program pays is the
+// step, which also holds the costs a stage's clock cannot see: the soft solve (ThinTool's copy of
+// Bullet's, with its last word), and Bullet's upkeep of structures the stage asks for
+// (predictMotion refits the soft body's face tree in every step once ThinTool's gather has built
+// it; stock Bullet builds none for this ball, nor does ThinTool when it scans).
 //
 // Each iteration builds the scene (untimed), brings the plate down at 1 m/s from clear of the
 // margin until its underside is a depth below the ball's top (the second argument, mm: 5 mm as
@@ -41,7 +42,7 @@ constexpr double kMargin = 0.05;     // m: the ball's margin, ThinTool's skin
 constexpr double kClearance = 0.08;  // m: the underside above the top at the start
 constexpr int kHoldSteps = 30;     // half a second
 
-void run(benchmark::State& state, Algorithm algorithm) {
+void run(benchmark::State& state, Algorithm algorithm, bool scanFaces = false) {
   const int faces = static_cast<int>(state.range(0));
   const double depth = 0.001 * static_cast<double>(state.range(1));  // m
   double stepSum = 0;
@@ -57,6 +58,7 @@ void run(benchmark::State& state, Algorithm algorithm) {
     settings.timeStep = kTimeStep;
     settings.settleSeconds = 0;
     settings.toolOptions.sampling.spacing = 0.051;  // 576 sample nodes, as HandlerBench
+    settings.toolOptions.bullet.scanFaces = scanFaces;
     SoftBallScene scene(settings);
     scene.ball().getCollisionShape()->setMargin(btScalar(kMargin));
     scene.ball().m_cfg.kPR = 0;
@@ -95,7 +97,7 @@ void run(benchmark::State& state, Algorithm algorithm) {
   state.counters["softFaces"] = faces;
   state.counters["stepsTimed"] = timed;
   state.counters["stepUs"] = stepSum / timed;
-  if (algorithm == Algorithm::ThinTool) {
+  if (algorithm != Algorithm::StockE) {
     state.counters["stageUs"] = stageSum / timed;
     state.counters["lastWordUs"] = lastWordSum / timed;
   }
@@ -103,6 +105,7 @@ void run(benchmark::State& state, Algorithm algorithm) {
 
 void StockStep(benchmark::State& state) { run(state, Algorithm::StockE); }
 void ThinToolStep(benchmark::State& state) { run(state, Algorithm::ThinTool); }
+void ThinToolScanStep(benchmark::State& state) { run(state, Algorithm::ThinTool, true); }
 
 // Arguments: the ball's faces, and the depth the plate holds at (mm). One iteration each: the
 // table's script asks for repetitions (scripts/step-table.py).
@@ -111,6 +114,7 @@ void ThinToolStep(benchmark::State& state) { run(state, Algorithm::ThinTool); }
       ->Unit(benchmark::kMicrosecond)
 BENCHMARK(StockStep)->Name("WholeStep/Stock") THINTOOL_STEP_SIZES;
 BENCHMARK(ThinToolStep)->Name("WholeStep/ThinTool") THINTOOL_STEP_SIZES;
+BENCHMARK(ThinToolScanStep)->Name("WholeStep/ThinToolScan") THINTOOL_STEP_SIZES;
 
 }  // namespace
 }  // namespace thintool::scenes
