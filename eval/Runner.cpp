@@ -516,6 +516,7 @@ RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
       sample.toolMicroseconds += report.diagnostics.detectionMicroseconds + report.diagnostics.responseMicroseconds +
                                  report.diagnostics.lastWord.microseconds;
       sample.force += report.contactForce.force;
+      result.nonFiniteWrites += double(report.diagnostics.nonFiniteWrites);
     }
     const std::vector<Vec3> nodes = nodesOf(soft);
     for (const Vec3& node : nodes) result.finite = result.finite && isFinite(node);

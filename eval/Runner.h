@@ -55,6 +55,9 @@ struct RunResult {
   /// than its own thickness in every measured step.
   double peakToolStepOverThickness = 0;
   bool finite = true;            ///< false when a soft node became non-finite (the run stops there)
+  /// ThinTool's own count, over the run, of its writes that left Bullet's state not finite
+  /// (ToolDiagnostics::nonFiniteWrites): not part of the verdict, which is the ground truth's.
+  double nonFiniteWrites = 0;
   std::vector<StepSample> samples;
 };
 

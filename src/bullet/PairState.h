@@ -87,6 +87,7 @@ struct PairState {
   double responseMicroseconds = 0;
   StockReason stock = StockReason::None;
   bool invalidPose = false;
+  Index nonFiniteWrites = 0;  ///< writes into Bullet's state left not finite (WriteCheck.h)
   /// The piece's pose where it stops a dynamic tool short of the patch's pinned nodes this step;
   /// stopsAtPinned is false when it stops it at none (ToolAlgorithm::stopAtPinnedNodes).
   Pose pinnedStopPose;
@@ -106,6 +107,7 @@ struct PairState {
     responseMicroseconds = 0;
     stock = StockReason::None;
     invalidPose = false;
+    nonFiniteWrites = 0;
     stopsAtPinned = false;
   }
 

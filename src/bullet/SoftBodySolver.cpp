@@ -5,6 +5,7 @@
 #include "PairState.h"
 #include "SoftSurface.h"
 #include "ToolReaction.h"
+#include "WriteCheck.h"
 
 #include <thintool/bullet/CollisionConfiguration.h>
 #include <thintool/bullet/Convert.h>
@@ -628,25 +629,29 @@ void SoftBodySolver::guardEnergy() {
     boundNextStep(fastest);
     if (!(scale < 1) && !(fastest > fastestAllowed)) continue;  // within both bounds: no second pass
     Index slowed = 0;
+    Index nonFinite = 0;
     btScalar leftSquared = 0;
     for (int i = 0; i < softBody.m_nodes.size(); ++i) {
       btSoftBody::Node& node = softBody.m_nodes[i];
       if (!(node.m_im > 0)) continue;
+      const btVector3 before = node.m_v;
       const double speed = double(node.m_v.length());
       if (speed > fastestAllowed) {
         node.m_v *= btScalar(fastestAllowed / speed);
         ++slowed;
       }
       if (scale < 1) node.m_v = mean + (node.m_v - mean) * scale;
+      detail::checkWrite(before, node.m_v, nonFinite);
       leftSquared = std::max(leftSquared, node.m_v.length2());
     }
     boundNextStep(double(btSqrt(leftSquared)));
-    if (slowed == 0 && removed == 0) continue;
+    if (slowed == 0 && removed == 0 && nonFinite == 0) continue;
     for (Tool* tool : m_configuration.tools()) {
       for (const auto& pair : tool->m_pairs) {
         if (pair->softBody == &softBody && pair->live) {
           tool->m_lastWord.nodesSlowed += slowed;
           tool->m_lastWord.energyRemoved += removed;
+          tool->m_lastWord.nonFiniteWrites += nonFinite;
           break;
         }
       }
@@ -827,7 +832,9 @@ void SoftBodySolver::finishSurvey(const NodeSurvey& survey, SoftBodyCache& cache
 }
 
 void SoftBodySolver::stopAtPinnedNodes(btRigidBody& tool, const ToolModel& piece, const Pose& pieceEnd,
-                                       Real inverseStep, const SoftBodyCache& cache, const btSoftBody& softBody) {
+                                       Real inverseStep, const SoftBodyCache& cache, const btSoftBody& softBody,
+                                       Index& nonFiniteWrites) {
+  const detail::BodyVelocities before(&tool);
   const auto forEachPinned = [&](const auto& visit) {
     for (const Index id : cache.pinned) {
       if (id < static_cast<Index>(softBody.m_nodes.size())) {
@@ -836,6 +843,7 @@ void SoftBodySolver::stopAtPinnedNodes(btRigidBody& tool, const ToolModel& piece
     }
   };
   detail::stopShortOfPinnedNodes(tool, forEachPinned, inverseStep, false);
+  before.check(nonFiniteWrites);
 }
 
 void SoftBodySolver::findBackings(const btSoftBody& softBody) {
@@ -980,7 +988,7 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
   const Real inverseStep = Real(softBody.m_sst.isdt);
   btRigidBody* dynamicTool = reactingBody(tool);
   if (cache.boundsHold && !grown.overlaps(cache.bounds)) {
-    if (dynamicTool != nullptr) stopAtPinnedNodes(*dynamicTool, piece, motion.end(), inverseStep, cache, softBody);
+    if (dynamicTool != nullptr) stopAtPinnedNodes(*dynamicTool, piece, motion.end(), inverseStep, cache, softBody, tool.m_lastWord.nonFiniteWrites);
     return {};
   }
   const auto gatherNode = [&](Index i) {
@@ -1026,7 +1034,7 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
   for (const Index node : m_nearNodes) m_isNearNode[node] = 0;
   if (m_patch.vertexCount() == 0) {
     for (Index f : m_patchFaces) m_faceInPatch[f] = 0;
-    if (dynamicTool != nullptr) stopAtPinnedNodes(*dynamicTool, piece, motion.end(), inverseStep, cache, softBody);
+    if (dynamicTool != nullptr) stopAtPinnedNodes(*dynamicTool, piece, motion.end(), inverseStep, cache, softBody, tool.m_lastWord.nonFiniteWrites);
     return {};
   }
   ++m_piecesNear;
@@ -1043,6 +1051,7 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
   // as velocity, as Bullet's position solve would, turns every correction of the solver's overlap
   // into a kick away from the tool.
   if (dynamicTool != nullptr) findBackings(softBody);
+  const detail::BodyVelocities toolBefore(dynamicTool);
   bool movedAny = false;
   Real largestMove = 0;
   for (Index v = 0; v < m_patch.vertexCount(); ++v) {
@@ -1062,6 +1071,8 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
     const btVector3 displacement = moved - node.m_x;
     largestMove = std::max(largestMove, Real(displacement.length()));
     cache.bounds.include(toVec3(moved));
+    const btVector3 positionBefore = node.m_x;
+    const btVector3 velocityBefore = node.m_v;
     node.m_x = moved;
     const Vec3& normal = m_patch.directions[v];
     const Vec3 toolPoint = m_patch.positions[v];
@@ -1079,6 +1090,8 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
         tool.m_holdWrench.torque += cross(toolPoint, force);
       }
     }
+    detail::checkWrite(positionBefore, node.m_x, tool.m_lastWord.nonFiniteWrites);
+    detail::checkWrite(velocityBefore, node.m_v, tool.m_lastWord.nonFiniteWrites);
     movedAny = true;
     if (dynamicTool != nullptr && node.m_im > 0) {
       const int backing = m_backingOfNode[id];
@@ -1087,7 +1100,8 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
     }
   }
   if (dynamicTool != nullptr) {
-    stopAtPinnedNodes(*dynamicTool, piece, motion.end(), inverseStep, cache, softBody);
+    toolBefore.check(tool.m_lastWord.nonFiniteWrites);
+    stopAtPinnedNodes(*dynamicTool, piece, motion.end(), inverseStep, cache, softBody, tool.m_lastWord.nonFiniteWrites);
     for (int c = 0; c < softBody.m_rcontacts.size(); ++c) {
       m_backingOfNode[static_cast<Index>(softBody.m_rcontacts[c].m_node - &softBody.m_nodes[0])] = -1;
     }

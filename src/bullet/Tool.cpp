@@ -137,6 +137,7 @@ const ToolStepReport& Tool::report() {
   contactForce.faces.clear();
   ToolDiagnostics& diagnostics = m_report.diagnostics;
   diagnostics.lastWord = m_lastWord;
+  diagnostics.nonFiniteWrites = m_lastWord.nonFiniteWrites;
   // A pose that is not finite was skipped by the step (the pairs held the tissue at the last good
   // one): report about that one too, so that no NaN reaches the report.
   Pose bodyPose = toPose(m_body.getWorldTransform());
@@ -167,6 +168,7 @@ const ToolStepReport& Tool::report() {
     stock.noRigidContact += state.stock == detail::StockReason::NoRigidContact ? 1 : 0;
     stock.noFaces += state.stock == detail::StockReason::NoFaces ? 1 : 0;
     diagnostics.invalidPosePairs += state.invalidPose ? 1 : 0;
+    diagnostics.nonFiniteWrites += state.nonFiniteWrites;
     for (int check = 1; check <= 2; ++check) {
       for (Index node : state.detection.excludedNodes[check - 1]) {
         m_report.excludedNodes.push_back({state.softBody, state.piece, node, check});

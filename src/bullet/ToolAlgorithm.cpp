@@ -6,6 +6,7 @@
 #include "PairState.h"
 #include "SoftSurface.h"
 #include "ToolReaction.h"
+#include "WriteCheck.h"
 
 #include <thintool/bullet/Convert.h>
 #include <thintool/bullet/Tool.h>
@@ -107,12 +108,15 @@ void makeContactsLast(btSoftBody& softBody) {
 Real applyResponse(PairState& state, btSoftBody& softBody, btRigidBody* dynamicBody, btScalar timeStep) {
   Real longestSquared = 0;
   const btScalar inverseStep = 1 / timeStep;
+  const BodyVelocities toolBefore(dynamicBody);
   for (const NodeCorrection& correction : state.response.corrections) {
     longestSquared = std::max(longestSquared, lengthSquared(correction.displacement));
     THINTOOL_ASSERT(state.patch.nodeIds[correction.vertex] < static_cast<Index>(softBody.m_nodes.size()));
     btSoftBody::Node& node = softBody.m_nodes[static_cast<int>(state.patch.nodeIds[correction.vertex])];
     const btVector3 displacement = toBt(correction.displacement);
+    const btVector3 before = node.m_x;
     node.m_x += displacement;
+    checkWrite(before, node.m_x, state.nonFiniteWrites);
     state.patch.positions[correction.vertex] += correction.displacement;
     if (dynamicBody != nullptr && node.m_im > 0) {
       // The velocity Bullet's solve would have given the node where it was predicted to be.
@@ -123,6 +127,7 @@ Real applyResponse(PairState& state, btSoftBody& softBody, btRigidBody* dynamicB
   if (dynamicBody != nullptr && !state.response.corrections.empty()) {
     dynamicBody->activate();
   }
+  toolBefore.check(state.nonFiniteWrites);
   const auto usable = [](const NodeHold& hold) { return isFinite(hold.normal) && std::isfinite(hold.offset); };
   const auto usableCount = std::count_if(state.holds.begin(), state.holds.end(), usable);
   int slot = softBody.m_rcontacts.size();
@@ -486,7 +491,15 @@ void ToolAlgorithm::stopAtPinnedNodes(btRigidBody& tool, const btSoftBody& softB
     }
     for (const auto& pair : m_tool.m_pairs) visitPair(*pair);
   };
+  const BodyVelocities before(&tool);
   stopShortOfPinnedNodes(tool, forEachPinned, Real(1) / Real(timeStep), true);
+  // Counted with the soft body's first pair, whichever pieces stopped the tool.
+  for (const auto& pair : m_tool.m_pairs) {
+    if (pair->softBody == &softBody) {
+      before.check(pair->nonFiniteWrites);
+      break;
+    }
+  }
 }
 
 void ToolAlgorithm::computeForces(PieceStep& step, btRigidBody* reactingBody) {
@@ -507,6 +520,7 @@ void ToolAlgorithm::computeForces(PieceStep& step, btRigidBody* reactingBody) {
   if (reactingBody == nullptr) {
     return;
   }
+  const BodyVelocities before(reactingBody);
   for (const FaceForce& face : state.force.faces) {
     if (isFinite(face.force) && isFinite(face.point) && lengthSquared(face.force) > 0) {
       reactingBody->applyImpulse(toBt(face.force * step.timeStep),
@@ -514,6 +528,7 @@ void ToolAlgorithm::computeForces(PieceStep& step, btRigidBody* reactingBody) {
       reactingBody->activate();
     }
   }
+  before.check(state.nonFiniteWrites);
 }
 
 }  // namespace thintool::detail

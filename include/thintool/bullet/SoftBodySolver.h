@@ -167,7 +167,7 @@ class THINTOOL_API SoftBodySolver : public btDefaultSoftBodySolver {
   void finishSurvey(const NodeSurvey& survey, SoftBodyCache& cache, const btSoftBody& softBody);
   // The soft body's pinned nodes stop the dynamic tool that carries the piece short of them.
   void stopAtPinnedNodes(btRigidBody& tool, const ToolModel& piece, const Pose& pieceEnd, Real inverseStep,
-                         const SoftBodyCache& cache, const btSoftBody& softBody);
+                         const SoftBodyCache& cache, const btSoftBody& softBody, Index& nonFiniteWrites);
   // The soft solve of each active body. A body that tools hold in the solver (their holds among
   // its contacts) or that the last word will look at is solved by solveInStages, the others
   // by Bullet's own solveConstraints.

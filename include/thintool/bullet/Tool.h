@@ -56,6 +56,9 @@ struct LastWordDiagnostics {
   /// tool or another body's contact held them too, and the solver's move of the node does not say
   /// which took what.
   Index holdNodesShared = 0;
+  /// The stage's and the energy guard's writes into Bullet's state that left a finite value not
+  /// finite (ToolDiagnostics::nonFiniteWrites).
+  Index nonFiniteWrites = 0;
   /// Soft nodes left inside the tool or soft faces left pierced by it after the stage: the
   /// invariant, expected 0.
   Index violations() const { return counts.nodesInside + counts.facesPierced; }
@@ -96,6 +99,11 @@ struct ToolDiagnostics {
   Index rejectedCorrections = 0;
   /// Pairs skipped because the tool's transform was not finite.
   Index invalidPosePairs = 0;
+  /// ThinTool's writes into Bullet's state this step (soft nodes' positions and velocities, the
+  /// dynamic tool's velocities) that left a finite value not finite, the last word's included.
+  /// Every write refuses values that are not finite: expected 0, and a failed internal check
+  /// (core/Assert.h) where those are compiled in.
+  Index nonFiniteWrites = 0;
   /// The last word (thintool::SoftBodySolver and response/Separation.h), after the soft solver.
   LastWordDiagnostics lastWord;
 };
