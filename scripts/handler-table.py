@@ -3,43 +3,24 @@
 
 Runs benchmarks/bullet/HandlerBench.cpp's rows (StockHandler, ThinToolHandler,
 ThinToolPaperHandler at each <faces>/<margin mm>) with repetitions in random order and keeps each
-row's fastest repetition (each time figure on its own), then prints one markdown row per size and
-margin. On a shared machine whole processes run up to 1.6 times slower for spells: the random
-order spreads a spell over stock and ThinTool alike, and the fastest repetition is the one it
-spared. Needs a Release build in ./build (see README):
+row's fastest repetition (each time figure on its own, scripts/benchmark_rows.py), then prints one
+markdown row per size and margin. Needs a Release build in ./build (see README):
 
     ./scripts/handler-table.py [repetitions, 5 by default]
 """
-import json
-import subprocess
 import sys
 
+from benchmark_rows import fastest_rows, number
+
 repetitions = sys.argv[1] if len(sys.argv) > 1 else "5"
-output = subprocess.run(
-    ["./build/benchmarks/thintool_benchmarks", "--benchmark_filter=Handler/",
-     f"--benchmark_repetitions={repetitions}", "--benchmark_enable_random_interleaving=true",
-     "--benchmark_format=json"],
-    check=True, capture_output=True, text=True).stdout
-fastest = {}
-for row in json.loads(output)["benchmarks"]:
-    if row.get("run_type") != "iteration":
-        continue
-    name, faces, margin = row["run_name"].split("/")[:3]
-    best = fastest.setdefault((name, int(faces), int(margin)), dict(row))
-    for key in ("real_time", "detectUs", "lastWordUs"):
-        if key in row:
-            best[key] = min(best[key], row[key])
+fastest = {(name, int(faces), int(margin)): row
+           for (name, faces, margin, *_), row in fastest_rows("Handler/", repetitions,
+                                                              ("real_time", "detectUs", "lastWordUs")).items()}
 print("| faces, margin | stock | ThinTool: stage / detection | ratio to stock: stage / detection "
       "| last word | ratio to stock: stage + last word "
       "| paper: stage / detection | ThinTool faces gathered (meeting the swept box) "
       "| faces its walk met | swept tests | stock nodes in its box |")
 print("|---|---|---|---|---|---|---|---|---|---|---|")
-
-
-def number(value):
-    return f"{value:,.0f}" if value >= 100 else (f"{value:.1f}" if value >= 10 else f"{value:.2f}")
-
-
 sizes = sorted({(faces, margin) for (_, faces, margin) in fastest}, key=lambda k: (-k[1], k[0]))
 for faces, margin in sizes:
     stock = fastest[("StockHandler", faces, margin)]

@@ -2,38 +2,21 @@
 """Prints the real-time table (docs/results/evaluation.md): stock Bullet's whole step against ThinTool's.
 
 Runs benchmarks/bullet/WholeStepBench.cpp's rows (WholeStep/Stock, WholeStep/ThinTool and
-WholeStep/ThinToolScan, BulletSettings::scanFaces, at each <faces>/<depth mm>) with repetitions in random order and keeps each row's fastest repetition, as
-handler-table.py does, then prints one markdown row per size and depth, and for each step budget
-the largest of the balls whose mean step fits it. Needs a Release build in ./build (see README):
+WholeStep/ThinToolScan, BulletSettings::scanFaces, at each <faces>/<depth mm>) with repetitions in
+random order and keeps each row's fastest repetition (scripts/benchmark_rows.py), then prints one
+markdown row per size and depth, and for each step budget the largest of the balls whose mean step
+fits it. Needs a Release build in ./build (see README):
 
     ./scripts/step-table.py [repetitions, 3 by default]
 """
-import json
-import subprocess
 import sys
 
+from benchmark_rows import fastest_rows, number
+
 repetitions = sys.argv[1] if len(sys.argv) > 1 else "3"
-output = subprocess.run(
-    ["./build/benchmarks/thintool_benchmarks", "--benchmark_filter=WholeStep/",
-     f"--benchmark_repetitions={repetitions}", "--benchmark_enable_random_interleaving=true",
-     "--benchmark_format=json"],
-    check=True, capture_output=True, text=True).stdout
-fastest = {}
-for row in json.loads(output)["benchmarks"]:
-    if row.get("run_type") != "iteration":
-        continue
-    _, name, faces, depth = row["run_name"].split("/")[:4]
-    key = (name, int(faces), int(depth))
-    best = fastest.setdefault(key, dict(row))
-    for counter in ("stepUs", "stageUs", "lastWordUs"):
-        if counter in row:
-            best[counter] = min(best[counter], row[counter])
-
-
-def number(value):
-    return f"{value:,.0f}" if value >= 100 else (f"{value:.1f}" if value >= 10 else f"{value:.2f}")
-
-
+fastest = {(name, int(faces), int(depth)): row
+           for (_, name, faces, depth, *_), row in fastest_rows("WholeStep/", repetitions,
+                                                                ("stepUs", "stageUs", "lastWordUs")).items()}
 print("| faces, depth | stock E: step (µs) | ThinTool: step (µs) | ratio to stock "
       "| ThinTool's clocks: stage + last word (µs) | ThinTool scanning: step (µs) | ratio to stock "
       "| its clocks: stage + last word (µs) |")

@@ -77,6 +77,28 @@ struct Ball {
   }
 };
 
+// 200 random boxes around the ball, from seed: visit(box, trial).
+template <class Visit>
+void forRandomBoxes(unsigned seed, const Visit& visit) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<Real> centre(-1.3, 1.3);
+  std::uniform_real_distribution<Real> half(0.001, 0.3);
+  for (int trial = 0; trial < 200; ++trial) {
+    const Vec3 c{centre(random), centre(random), centre(random)};
+    const Vec3 h{half(random), half(random), half(random)};
+    visit(Aabb{c - h, c + h}, trial);
+  }
+}
+
+// The face whose first node is highest.
+int topFace(const btSoftBody& body) {
+  int top = 0;
+  for (int f = 1; f < body.m_faces.size(); ++f) {
+    if (body.m_faces[f].m_n[0]->m_x.y() > body.m_faces[top].m_n[0]->m_x.y()) top = f;
+  }
+  return top;
+}
+
 TEST(SoftSurface, TheLeafSlackIsTheMarginLessTheNodesTravel) {
   Ball ball;
   EXPECT_NEAR(faceLeafSlack(*ball.body, 0), kMargin, 1e-7);
@@ -96,18 +118,12 @@ TEST(SoftSurface, AWalkShrunkByTheSlackGathersTheSameFaces) {
   Ball ball;
   const Real slack = faceLeafSlack(*ball.body, 0);
   ASSERT_GT(slack, 0);
-  std::mt19937 random(7);
-  std::uniform_real_distribution<Real> centre(-1.3, 1.3);
-  std::uniform_real_distribution<Real> half(0.001, 0.3);
   std::size_t gathered = 0;
-  for (int trial = 0; trial < 200; ++trial) {
-    const Vec3 c{centre(random), centre(random), centre(random)};
-    const Vec3 h{half(random), half(random), half(random)};
-    const Aabb box{c - h, c + h};
+  forRandomBoxes(7, [&](const Aabb& box, int trial) {
     const std::vector<Index> trusting = ball.gather(box, 0);
     EXPECT_EQ(ball.gather(box, slack), trusting) << "trial " << trial;
     gathered += trusting.size();
-  }
+  });
   EXPECT_GT(gathered, 200u) << "the boxes did meet the ball";
 }
 
@@ -116,10 +132,7 @@ TEST(SoftSurface, NodesMovedAfterTheFitAreFoundWhenTheirTravelIsCounted) {
   // A face on top, pushed up by four margins after its leaf was fitted (as another tool's
   // response in the same pass would), into a box that its old leaf does not reach.
   btSoftBody& body = *ball.body;
-  int top = 0;
-  for (int f = 1; f < body.m_faces.size(); ++f) {
-    if (body.m_faces[f].m_n[0]->m_x.y() > body.m_faces[top].m_n[0]->m_x.y()) top = f;
-  }
+  const int top = topFace(body);
   const Real push = 4 * kMargin;
   Aabb face;
   for (btSoftBody::Node* node : body.m_faces[top].m_n) {
@@ -138,14 +151,8 @@ TEST(SoftSurface, NodesMovedAfterTheFitAreFoundWhenTheirTravelIsCounted) {
 
 TEST(SoftSurface, TheScanGathersEveryFaceWhoseMotionMeetsTheBox) {
   Ball ball;
-  std::mt19937 random(11);
-  std::uniform_real_distribution<Real> centre(-1.3, 1.3);
-  std::uniform_real_distribution<Real> half(0.001, 0.3);
   std::size_t gathered = 0;
-  for (int trial = 0; trial < 200; ++trial) {
-    const Vec3 c{centre(random), centre(random), centre(random)};
-    const Vec3 h{half(random), half(random), half(random)};
-    const Aabb box{c - h, c + h};
+  forRandomBoxes(11, [&](const Aabb& box, int trial) {
     const std::vector<Index> scanned = ball.scan(box);
     EXPECT_EQ(scanned, ball.facesMoving(box)) << "trial " << trial;
     const std::vector<Index> walked = ball.gather(box, 0);
@@ -153,7 +160,7 @@ TEST(SoftSurface, TheScanGathersEveryFaceWhoseMotionMeetsTheBox) {
       EXPECT_TRUE(std::binary_search(scanned.begin(), scanned.end(), f)) << "trial " << trial << ", face " << f;
     }
     gathered += scanned.size();
-  }
+  });
   EXPECT_GT(gathered, 200u) << "the boxes did meet the ball";
 }
 
@@ -162,10 +169,7 @@ TEST(SoftSurface, TheScanFindsAFaceThatLeavesTheBoxHoweverFast) {
   // A face on top starts the step in a small box and is predicted to end a metre above it, which
   // no bound on the soft nodes' motion near the box foresaw. Its nodes' other faces go with it.
   btSoftBody& body = *ball.body;
-  int top = 0;
-  for (int f = 1; f < body.m_faces.size(); ++f) {
-    if (body.m_faces[f].m_n[0]->m_x.y() > body.m_faces[top].m_n[0]->m_x.y()) top = f;
-  }
+  const int top = topFace(body);
   Aabb start;
   for (btSoftBody::Node* node : body.m_faces[top].m_n) {
     start.include(toVec3(node->m_q));
