@@ -988,7 +988,10 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
   const Real inverseStep = Real(softBody.m_sst.isdt);
   btRigidBody* dynamicTool = reactingBody(tool);
   if (cache.boundsHold && !grown.overlaps(cache.bounds)) {
-    if (dynamicTool != nullptr) stopAtPinnedNodes(*dynamicTool, piece, motion.end(), inverseStep, cache, softBody, tool.m_lastWord.nonFiniteWrites);
+    if (dynamicTool != nullptr) {
+      stopAtPinnedNodes(*dynamicTool, piece, motion.end(), inverseStep, cache, softBody,
+                        tool.m_lastWord.nonFiniteWrites);
+    }
     return {};
   }
   const auto gatherNode = [&](Index i) {
@@ -1034,7 +1037,10 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
   for (const Index node : m_nearNodes) m_isNearNode[node] = 0;
   if (m_patch.vertexCount() == 0) {
     for (Index f : m_patchFaces) m_faceInPatch[f] = 0;
-    if (dynamicTool != nullptr) stopAtPinnedNodes(*dynamicTool, piece, motion.end(), inverseStep, cache, softBody, tool.m_lastWord.nonFiniteWrites);
+    if (dynamicTool != nullptr) {
+      stopAtPinnedNodes(*dynamicTool, piece, motion.end(), inverseStep, cache, softBody,
+                        tool.m_lastWord.nonFiniteWrites);
+    }
     return {};
   }
   ++m_piecesNear;
@@ -1101,7 +1107,8 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
   }
   if (dynamicTool != nullptr) {
     toolBefore.check(tool.m_lastWord.nonFiniteWrites);
-    stopAtPinnedNodes(*dynamicTool, piece, motion.end(), inverseStep, cache, softBody, tool.m_lastWord.nonFiniteWrites);
+    stopAtPinnedNodes(*dynamicTool, piece, motion.end(), inverseStep, cache, softBody,
+                      tool.m_lastWord.nonFiniteWrites);
     for (int c = 0; c < softBody.m_rcontacts.size(); ++c) {
       m_backingOfNode[static_cast<Index>(softBody.m_rcontacts[c].m_node - &softBody.m_nodes[0])] = -1;
     }
