@@ -16,7 +16,7 @@
 // from the first in which the plate is within the margin to the end are timed one by one, and the
 // iteration's time is their mean. stageUs and lastWordUs are ThinTool's own clocks over the same
 // steps (Tool::report: detection and response; the last word, with the pass over the nodes that it
-// shares with Bullet's velocity update). scripts/step-table.py runs them and prints the real-time
+// shares with Bullet's velocity update, which sharedPassUs times on its own). scripts/step-table.py runs them and prints the real-time
 // table of docs/results/evaluation.md.
 //
 // Deviations from a run: no gravity or pressure (as HandlerBench, so that no settling is needed at
@@ -48,6 +48,7 @@ void run(benchmark::State& state, Algorithm algorithm, bool scanFaces = false) {
   double stepSum = 0;
   double stageSum = 0;
   double lastWordSum = 0;
+  double sharedPassSum = 0;
   int timed = 0;
   for (auto _ : state) {
     state.PauseTiming();
@@ -86,6 +87,7 @@ void run(benchmark::State& state, Algorithm algorithm, bool scanFaces = false) {
         const ToolDiagnostics& d = tool->report().diagnostics;
         stageSum += d.detectionMicroseconds + d.responseMicroseconds;
         lastWordSum += d.lastWord.microseconds;
+        sharedPassSum += d.lastWord.sharedPassMicroseconds;
       }
     }
     stepSum += iterationSeconds * 1e6;
@@ -100,6 +102,7 @@ void run(benchmark::State& state, Algorithm algorithm, bool scanFaces = false) {
   if (algorithm != Algorithm::StockE) {
     state.counters["stageUs"] = stageSum / timed;
     state.counters["lastWordUs"] = lastWordSum / timed;
+    state.counters["sharedPassUs"] = sharedPassSum / timed;
   }
 }
 

@@ -379,9 +379,12 @@ void SoftBodySolver::solveInStages(btSoftBody& body) {
       }
     }
     if (surveyed != nullptr) {
+      const auto passEnd = std::chrono::steady_clock::now();
       finishSurvey(survey, *surveyed, body);
-      m_active.front()->m_lastWord.microseconds +=
+      LastWordDiagnostics& lastWord = m_active.front()->m_lastWord;
+      lastWord.microseconds +=
           std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+      lastWord.sharedPassMicroseconds += std::chrono::duration<double, std::micro>(passEnd - start).count();
     }
   }
   if (config.diterations > 0) {

@@ -48,6 +48,10 @@ struct LastWordDiagnostics {
   /// The stage's time in the step (µs): this tool's passes of the last word, and its share of the
   /// energy guard's (the guard's time, split evenly among the tools that have it on).
   double microseconds = 0;
+  /// Of microseconds, the pass over the nodes that the last word's survey shares with Bullet's
+  /// velocity update after its solve (as btSoftBody::solveConstraints's), which a step without
+  /// ThinTool makes too: what the stage adds to the step is microseconds less about this.
+  double sharedPassMicroseconds = 0;
   /// The energy guard (EnergyGuardSettings), over the soft bodies near the tool: nodes it slowed
   /// to the speed bound, and kinetic energy it took out to meet the energy bound (J).
   Index nodesSlowed = 0;
