@@ -21,9 +21,10 @@
 // tool body's own, which is idle): gather, detection, response and the solver holds, since in
 // ThinTool the response is part of the collision stage. ThinTool's last word runs later in the
 // step, after Bullet's soft solve, and is not replayed: lastWordUs is its time in the real step
-// (one sample, with cold caches). The detectUs and responseUs counters are
-// ThinTool's own clock for its two parts (Tool::report), a cross-check of the measured time, and
-// detectUs alone is the detection stage.
+// (one sample, with cold caches), sharedPassUs the part of it spent in the pass over the nodes that
+// it shares with Bullet's velocity update, which a stock step makes too. The detectUs and
+// responseUs counters are ThinTool's own clock for its two parts (Tool::report), a cross-check of
+// the measured time, and detectUs alone is the detection stage.
 //
 // The stage is replayed, not stepped: the ball's nodes are captured when the dispatcher reaches the
 // tool's pairs in that step, and each iteration restores them near the tool (untimed) and runs the
@@ -89,6 +90,7 @@ struct Replay {
   std::vector<int> nearNodes;            // restored before each replay
   double stepMicroseconds = 0;
   double stepLastWordMicroseconds = 0;  // ThinTool's last word in that step (after Bullet's soft solve)
+  double stepSharedPassMicroseconds = 0;  // of it, the pass over the nodes shared with Bullet's own
   long stepContacts = 0;
   double stepDetectMicroseconds = 0;  // ThinTool's own clock in the real step
   double stepFacesNear = 0;
@@ -165,6 +167,7 @@ struct Replay {
       stepDetectMicroseconds = d.detectionMicroseconds;
       stepFacesNear = d.detection.facesGathered;
       stepLastWordMicroseconds = d.lastWord.microseconds;
+      stepSharedPassMicroseconds = d.lastWord.sharedPassMicroseconds;
     } else {
       stepContacts = countStockContacts();
     }
@@ -343,6 +346,7 @@ void run(benchmark::State& state, Algorithm algorithm) {
     state.counters["detectUs"] = detect / n;
     state.counters["responseUs"] = respond / n;
     state.counters["lastWordUs"] = replay.stepLastWordMicroseconds;
+    state.counters["sharedPassUs"] = replay.stepSharedPassMicroseconds;
     state.counters["stepDetectUs"] = replay.stepDetectMicroseconds;
     state.counters["stepFacesNear"] = replay.stepFacesNear;
   } else {
