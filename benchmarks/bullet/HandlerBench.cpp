@@ -46,6 +46,8 @@
 
 #include "../../src/bullet/CollisionPass.h"
 
+#include "FloatingBall.h"
+
 #include <CountingAllocator.h>
 #include <SoftBallScene.h>
 
@@ -125,23 +127,8 @@ struct Replay {
   }
 
   Replay(Algorithm algorithm, int faces, double margin) {
-    SceneSettings settings;
-    settings.algorithm = algorithm;
-    settings.ballResolution = faces / 2 - 1;  // CreateEllipsoid's points make 2·(res + 1) faces
-    settings.exactBallHull = true;            // CreateEllipsoid's own hull stops near 2,360 faces
-    settings.timeStep = kTimeStep;
-    // The plate's faces are 0.802 m wide with its 1 mm margin: 16 cells a side, 576 nodes, as
-    // DetectionBench's plate (0.05 would make 17 and 646).
-    settings.toolOptions.sampling.spacing = 0.051;
-    scene = std::make_unique<SoftBallScene>(settings);
-    scene->ball().getCollisionShape()->setMargin(btScalar(margin));  // ThinTool's skin follows it
-    // Without gravity nothing settles the ball, and its pressure would inflate it by 0.2 m in the
-    // four steps; without pressure it keeps the shape it was built with, held by its links.
-    scene->ball().m_cfg.kPR = 0;
+    scene = makeFloatingBall(algorithm, faces, margin, kTimeStep);
     btSoftRigidDynamicsWorld& world = scene->world();
-    world.setGravity(btVector3(0, 0, 0));
-    world.getWorldInfo().m_gravity = btVector3(0, 0, 0);
-
     const double halfThickness = scene->toolBox().halfExtents.y;
     const double finalHeight = scene->ballTop() - kFinalDepth + halfThickness;
     const double stepLength = kSpeed * kTimeStep;

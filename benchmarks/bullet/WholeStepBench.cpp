@@ -22,6 +22,8 @@
 // Deviations from a run: no gravity or pressure (as HandlerBench, so that no settling is needed at
 // 65,536 faces), a kinematic plate.
 
+#include "FloatingBall.h"
+
 #include <SoftBallScene.h>
 
 #include <thintool/thintool.h>
@@ -32,6 +34,7 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <memory>
 
 namespace thintool::scenes {
 namespace {
@@ -52,19 +55,10 @@ void run(benchmark::State& state, Algorithm algorithm, bool scanFaces = false) {
   int timed = 0;
   for (auto _ : state) {
     state.PauseTiming();
-    SceneSettings settings;
-    settings.algorithm = algorithm;
-    settings.ballResolution = faces / 2 - 1;  // CreateEllipsoid's points make 2·(res + 1) faces
-    settings.exactBallHull = true;
-    settings.timeStep = kTimeStep;
-    settings.settleSeconds = 0;
-    settings.toolOptions.sampling.spacing = 0.051;  // 576 sample nodes, as HandlerBench
-    settings.toolOptions.bullet.scanFaces = scanFaces;
-    SoftBallScene scene(settings);
-    scene.ball().getCollisionShape()->setMargin(btScalar(kMargin));
-    scene.ball().m_cfg.kPR = 0;
-    scene.world().setGravity(btVector3(0, 0, 0));
-    scene.world().getWorldInfo().m_gravity = btVector3(0, 0, 0);
+    ToolOptions options;
+    options.bullet.scanFaces = scanFaces;
+    const std::unique_ptr<SoftBallScene> floating = makeFloatingBall(algorithm, faces, kMargin, kTimeStep, options);
+    SoftBallScene& scene = *floating;
     if (scene.ball().m_faces.size() != faces) {
       state.SkipWithError("the ball does not have the faces asked for");
       return;
