@@ -319,19 +319,18 @@ Index gatherPatchByScan(btSoftBody& softBody, const Aabb& toolBox, PairState& st
       // finite is listed all the same: detection skips and counts it.
       btVector3 low = nodes[corners[0]].m_x;
       btVector3 high = low;
+      bool finite = true;
       for (const Index n : corners) {
-        low.setMin(nodes[n].m_x);
-        low.setMin(nodes[n].m_q);
-        high.setMax(nodes[n].m_x);
-        high.setMax(nodes[n].m_q);
+        const btSoftBody::Node& node = nodes[n];
+        low.setMin(node.m_x);
+        low.setMin(node.m_q);
+        high.setMax(node.m_x);
+        high.setMax(node.m_q);
+        finite = finite && std::isfinite(node.m_x.length2() + node.m_q.length2());
       }
       Aabb motion{toVec3(low), toVec3(high)};
       for (const Index n : corners) {
         if (state.sweptNodes.stampedLastStep(n)) motion.include(state.lastPositions[n]);
-      }
-      bool finite = true;
-      for (const Index n : corners) {
-        finite = finite && std::isfinite(nodes[n].m_x.length2() + nodes[n].m_q.length2());
       }
       if (!finite || motion.overlaps(toolBox)) state.candidateFaces.push_back(static_cast<Index>(f));
     }

@@ -2,11 +2,11 @@
 // Copyright (c) 2026 The ThinTool developers
 #pragma once
 
-// Reading a btSoftBody's surface near a tool into the core's plain data. The paper's detection,
-// whose reverse rays cross the whole body, walks the soft body's face tree (btSoftBody::m_fdbvt),
-// which it builds if absent; Bullet then refits every leaf of it in each predictMotion. Swept
-// detection walks that tree when it exists, and otherwise scans the faces' end positions, which
-// costs a step less than Bullet's refit (benchmarks/bullet/WholeStepBench.cpp).
+// Reading a btSoftBody's surface near a tool into the core's plain data. The gather walks the soft
+// body's face tree (btSoftBody::m_fdbvt), which the glue builds if absent, so that only faces near
+// the tool are visited; Bullet then refits every leaf of it in each predictMotion. Swept detection
+// with BulletSettings::scanFaces builds none and scans every face's motion instead, which costs a
+// whole step less than that refit (benchmarks/bullet/WholeStepBench.cpp).
 
 #include "PairState.h"
 
