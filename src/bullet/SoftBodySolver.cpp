@@ -192,8 +192,16 @@ void SoftBodySolver::solveSoftBodies() {
   for (int i = 0; i < m_softBodySet.size(); ++i) {
     btSoftBody& body = *m_softBodySet[i];
     if (!body.isActive()) continue;
-    if (collectHolds(body) || lastWordReaches(body)) {
-      solveInStages(body);
+    const BodyEnergy& energy = m_energy[static_cast<std::size_t>(i)];
+    const bool guarded = energy.predicted >= 0;
+    if (collectHolds(body) || lastWordReaches(body) || guarded) {
+      // A guarded body's nodes move no farther in the solve than the guard's speed bound allows
+      // over the step: bounding only the velocity the solve leaves would let a node jump across
+      // the step and keep the jump. Only where the last word follows, which puts back on its side
+      // a node that the shorter move leaves in a tool (the response's own push is part of the move).
+      const bool shorten = guarded && energy.lastWordFollows;
+      const btScalar longestMove = shorten ? btScalar(fastestAllowed(energy)) * body.m_sst.sdt : BT_LARGE_FLOAT;
+      solveInStages(body, longestMove);
     } else {
       body.solveConstraints();
     }
@@ -308,7 +316,23 @@ void SoftBodySolver::limitHoldReach(btSoftBody& body) {
   }
 }
 
-void SoftBodySolver::solveInStages(btSoftBody& body) {
+void SoftBodySolver::countShortenedMoves(const btSoftBody& body, Index shortened, Index nonFinite) {
+  for (Tool* tool : m_configuration.tools()) {
+    for (const auto& pair : tool->m_pairs) {
+      if (pair->softBody == &body && pair->live) {
+        tool->m_lastWord.movesShortened += shortened;
+        tool->m_lastWord.nonFiniteWrites += nonFinite;
+        break;
+      }
+    }
+  }
+}
+
+double SoftBodySolver::fastestAllowed(const BodyEnergy& energy) {
+  return std::max(energy.speedFactor * std::max(1.0, energy.toolAtMovedNodes), energy.predictedFastest);
+}
+
+void SoftBodySolver::solveInStages(btSoftBody& body, btScalar longestMove) {
   // Bullet 3.24's btSoftBody::solveConstraints (btSoftBody.cpp), stage for stage and in its
   // arithmetic, so that a body solved here moves exactly as Bullet would move it.
   body.applyClusters(false);
@@ -370,14 +394,26 @@ void SoftBodySolver::solveInStages(btSoftBody& body) {
         m_hasStepReach && config.diterations == 0 && body.m_clusters.size() == 0 ? &topologyOf(body) : nullptr;
     NodeSurvey survey;
     if (surveyed != nullptr) survey = beginSurvey(*surveyed, m_step + 1);
+    const btScalar longestMoveSquared = longestMove < BT_LARGE_FLOAT ? longestMove * longestMove : BT_LARGE_FLOAT;
+    Index shortened = 0;
+    Index nonFinite = 0;
     for (int i = 0; i < body.m_nodes.size(); ++i) {
       btSoftBody::Node& node = body.m_nodes[i];
+      const btVector3 move = node.m_x - node.m_q;
+      const btScalar moveSquared = move.length2();
+      if (moveSquared > longestMoveSquared && node.m_im > 0) {
+        const btVector3 before = node.m_x;
+        node.m_x = node.m_q + move * btSqrt(longestMoveSquared / moveSquared);
+        detail::checkWrite(before, node.m_x, nonFinite);
+        ++shortened;
+      }
       node.m_v = (node.m_x - node.m_q) * velocityFactor;
       node.m_f = btVector3(0, 0, 0);
       if (surveyed != nullptr) {
         surveyNode(survey, *surveyed, i, node.m_x, node.m_q, m_dynamicToolsActive && !(node.m_im > 0));
       }
     }
+    if (shortened > 0 || nonFinite > 0) countShortenedMoves(body, shortened, nonFinite);
     if (surveyed != nullptr) {
       const auto passEnd = std::chrono::steady_clock::now();
       finishSurvey(survey, *surveyed, body);
@@ -502,25 +538,34 @@ void SoftBodySolver::measureEnergy(btScalar timeStep) {
       const Pose now = toPose(tool->body().getWorldTransform());
       const Pose before = stepStart(*tool, now);
       bool guarding = false;
+      double corner = 0;
       for (const auto& pair : tool->m_pairs) {
         if (pair->softBody != &softBody || !pair->live) continue;
         if (!pair->response.corrections.empty() || pair->holdCount > 0) ++energy.piecesHolding;
         if (pair->response.corrections.empty()) continue;
-        if (!guarding) energy.toolFastest = std::max(energy.toolFastest, fastestCorner(*tool, before, now, inverseStep));
+        if (!guarding) {
+          corner = fastestCorner(*tool, before, now, inverseStep);
+          energy.toolFastest = std::max(energy.toolFastest, corner);
+        }
         guarding = true;
         guarded = true;
         energy.boundForcesNextStep = energy.boundForcesNextStep || settings.boundForcesNextStep;
         energy.speedFactor = std::max(energy.speedFactor, double(settings.speedFactor));
         energy.energySlack = std::max(energy.energySlack, double(settings.energySlack));
         energy.restingSpeed = std::max(energy.restingSpeed, double(settings.restingSpeed));
+        energy.lastWordFollows = energy.lastWordFollows || tool->m_options.separation.enabled;
         for (const NodeCorrection& correction : pair->response.corrections) {
           const btSoftBody::Node* node = movedNode(softBody, *pair, correction);
           if (node == nullptr) continue;
           const Vec3 at = toVec3(node->m_x);
-          const Vec3 toolVelocity = (at - before.apply(now.applyInverse(at))) * inverseStep;
-          if (!isFinite(toolVelocity)) continue;
-          energy.allowance += 0.5 * double(lengthSquared(toolVelocity)) / double(node->m_im);
-          energy.fastest = std::max(energy.fastest, double(length(toolVelocity)));
+          // No point of a convex piece moves faster than its fastest corner (the chord's velocity
+          // is affine in the point): a node the response moved but left away from the piece, where
+          // the tool's turn would sweep faster, is given the corner's speed at most.
+          const double toolSpeed =
+              std::min(double(length((at - before.apply(now.applyInverse(at))) * inverseStep)), corner);
+          if (!std::isfinite(toolSpeed)) continue;
+          energy.allowance += 0.5 * toolSpeed * toolSpeed / double(node->m_im);
+          energy.toolAtMovedNodes = std::max(energy.toolAtMovedNodes, toolSpeed);
         }
       }
     }
@@ -534,7 +579,7 @@ void SoftBodySolver::measureEnergy(btScalar timeStep) {
       fastestSquared = std::max(fastestSquared, node.m_v.length2());
       return (node.m_x - node.m_q) * inverseStepBt;
     });
-    energy.fastest = std::max(energy.fastest, double(btSqrt(fastestSquared)));
+    energy.predictedFastest = double(btSqrt(fastestSquared));
     // The response's moves are not the body's own motion: what they add is taken back out.
     for (Tool* tool : m_configuration.tools()) {
       if (!tool->m_options.energyGuard.enabled) continue;
@@ -553,7 +598,7 @@ void SoftBodySolver::measureEnergy(btScalar timeStep) {
     }
     const double internal =
         motion.mass > 0 ? motion.kinetic - 0.5 * double(motion.momentum.length2()) / motion.mass : 0;
-    if (std::isfinite(internal) && std::isfinite(energy.fastest)) energy.predicted = std::max(internal, 0.0);
+    if (std::isfinite(internal) && std::isfinite(energy.predictedFastest)) energy.predicted = std::max(internal, 0.0);
   }
 }
 
@@ -616,7 +661,7 @@ void SoftBodySolver::guardEnergy() {
     const double removed = scale < 1 ? internal - bound : 0;
     // No node faster than the bound: the tool gives a node its own speed at most, a stiff link a
     // few times that within a step. Then the energy's scale, about the mean.
-    const double fastestAllowed = energy.speedFactor * std::max(1.0, energy.fastest);
+    const double fastestAllowed = SoftBodySolver::fastestAllowed(energy);
     SoftBodyCache* cache = nullptr;
     const auto boundNextStep = [&](double fastestLeft) {
       if (!energy.boundForcesNextStep) return;

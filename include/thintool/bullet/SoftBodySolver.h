@@ -22,9 +22,9 @@
 /// of its own and the tool's (no bounce). A dynamic tool receives the moved nodes' reaction as impulses, unless its force model already
 /// reacts on it (ForceSettings::applyToDynamicTool). Soft bodies that ignore the tool
 /// (m_collisionDisabledObjects) are left alone. Last, the energy guard (EnergyGuardSettings)
-/// bounds the velocities of each soft body a tool's response moved in the step, and, in Bullet's
-/// prediction of the next step, what that body's forces add to them. Tool::report()
-/// says what the stages did and what they left (ToolDiagnostics::lastWord).
+/// bounds the velocities of each soft body a tool's response moved in the step (and, in the solve,
+/// its nodes' moves), and, in Bullet's prediction of the next step, what that body's forces add to
+/// them. Tool::report() says what the stages did and what they left (ToolDiagnostics::lastWord).
 
 #include <thintool/core/Api.h>
 #include <thintool/response/Separation.h>
@@ -57,13 +57,15 @@ class THINTOOL_API SoftBodySolver : public btDefaultSoftBodySolver {
   struct BodyEnergy {
     double predicted = -1;  // kinetic energy about the centre of mass before the solve (J); < 0: not guarded
     double allowance = 0;   // ½·m·u² over the nodes ThinTool moved, u the tool's speed there (J)
-    double fastest = 0;     // fastest node as predicted, or tool point at a node ThinTool moved (m/s)
+    double toolAtMovedNodes = 0;  // the fastest tool point at a node ThinTool moved (m/s)
+    double predictedFastest = 0;  // the fastest node as Bullet predicted it, before the solve (m/s)
     double toolFastest = 0;  // the guarding tools' fastest corner over the step (m/s)
     int piecesHolding = 0;   // tool pieces whose response moved or held a node of the body this step
     double speedFactor = 1;
     double energySlack = 0;
     double restingSpeed = 0;
     bool boundForcesNextStep = false;
+    bool lastWordFollows = false;  // a guarding tool's last word runs after the solve
   };
 
   // Where the tool's motion over this step starts: where the last word left it, or where it is
@@ -169,8 +171,8 @@ class THINTOOL_API SoftBodySolver : public btDefaultSoftBodySolver {
   void stopAtPinnedNodes(btRigidBody& tool, const ToolModel& piece, const Pose& pieceEnd, Real inverseStep,
                          const SoftBodyCache& cache, const btSoftBody& softBody, Index& nonFiniteWrites);
   // The soft solve of each active body. A body that tools hold in the solver (their holds among
-  // its contacts) or that the last word will look at is solved by solveInStages, the others
-  // by Bullet's own solveConstraints.
+  // its contacts), that the last word will look at or that the energy guard bounds is solved by
+  // solveInStages, the others by Bullet's own solveConstraints.
   void solveSoftBodies();
   // Whether a tool of this step's last word acts on the body.
   bool lastWordReaches(const btSoftBody& body) const;
@@ -179,7 +181,13 @@ class THINTOOL_API SoftBodySolver : public btDefaultSoftBodySolver {
   // btSoftBody::solveConstraints, stage for stage, with each contact stage of the position solve
   // measured (the moves of the held nodes are the impulses their holds applied) and the last
   // word's survey in its last pass over the nodes.
-  void solveInStages(btSoftBody& body);
+  // longestMove (m): a guarded body's bound on each node's move over the step (fastestAllowed),
+  // BT_LARGE_FLOAT for none.
+  void solveInStages(btSoftBody& body, btScalar longestMove);
+  // Reports, to the tools near the body, the nodes whose move solveInStages shortened.
+  void countShortenedMoves(const btSoftBody& body, Index shortened, Index nonFinite);
+  // The energy guard's bound on a node's speed (EnergyGuardSettings), m/s.
+  static double fastestAllowed(const BodyEnergy& energy);
   // Splits a contact stage's moves of the nodes that several tools held among those tools.
   void replaySharedHolds(btSoftBody& body, double inverseStepSquared);
 

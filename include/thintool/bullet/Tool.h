@@ -56,6 +56,9 @@ struct LastWordDiagnostics {
   /// to the speed bound, and kinetic energy it took out to meet the energy bound (J).
   Index nodesSlowed = 0;
   double energyRemoved = 0;
+  /// Nodes whose move in Bullet's solve the energy guard shortened to its speed bound over the step,
+  /// before the last word: a bound on the velocity alone would leave the node where the jump took it.
+  Index movesShortened = 0;
   /// Nodes the tool held in the soft solver whose load ToolStepReport::holdWrench leaves out: another
   /// tool or another body's contact held them too, and the solver's move of the node does not say
   /// which took what.
