@@ -812,6 +812,10 @@ SoftBodySolver::NodeSurvey SoftBodySolver::beginSurvey(SoftBodyCache& cache, int
   if (cache.stepSeen != step - 1) cache.measuredReach = -1;
   cache.stepSeen = step;
   cache.pinned.clear();
+  // The last word's moves in the step before stretched faces too, after that step's survey: a
+  // body its moves had torn into faces a metre long kept a reach that missed them, and the needle
+  // was left across them (generated seed 16703).
+  cache.faceReach += cache.lastWordReach;
   cache.lastWordReach = 0;
   cache.candidatesHold = false;
   for (const Index id : cache.candidates) cache.isCandidate[id] = 0;
