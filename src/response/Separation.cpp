@@ -640,10 +640,13 @@ Index shiftGroup(const Pose& end, const Vec3& shift, const Vec3& direction, Sepa
 // Nor may a translation longer than twice the path of the piece's farthest-going corner leave a
 // face in a near piece that it did not meet before (pushesIntoNearPiece): a shorter one is what
 // the step's motion explains, and the pieces' passes settle what it pushes into another piece.
+// Each face that a translation leaves pierced brings its nodes in; on a sheet a needle whirls
+// through (seeds 623 and 1603, needles turning 124° and 75° a step), a group took one more node
+// with each translation and needed up to 16 of them, as many as carryFacesWithPiece allows.
 // Nothing moves when no translation serves.
 void moveStuckFacesTogether(const ToolModel& piece, const PieceMotion& motion, const Pose* poses, Real clearance,
                             const std::vector<NearPiece>& near, SeparationPatch& patch) {
-  constexpr int kMostGrowths = 8;
+  constexpr int kMostGrowths = 16;
   const Pose& end = motion.end();
   const Index vertexCount = patch.vertexCount();
   const Real travel = near.empty() ? 0 : farthestPath(piece, motion, poses);
