@@ -1003,38 +1003,15 @@ void SoftBodySolver::keepOutsideClosedBody(Tool& tool, const ToolModel& piece, c
   const auto startOf = [&](Index id) { return toVec3(softBody.m_nodes[static_cast<int>(id)].m_q); };
   if (!endsInside() || std::abs(windingNumber(softBody, motion.start().apply(centre), startOf)) > Real(0.5)) return;
   if (counts.arcSpared > 0) {
-    m_arcPositions.assign(m_patch.positions.begin(), m_patch.positions.end());
-    m_arcDirections.assign(m_patch.directions.begin(), m_patch.directions.end());
-    m_arcMoved.assign(m_patch.moved.begin(), m_patch.moved.end());
-    const Index arcVertices = m_patch.vertexCount();
     for (Index v = 0; v < m_patch.vertexCount(); ++v) {
       m_patch.positions[v] = m_patch.solvedPositions[v];
       m_patch.moved[v] = 0;
     }
     const SeparationCounts bothReadings = counts;
     counts = separateGrowingPatch(tool, piece, motion.alongChord(), softBody, cache, false, near);
-    // The chord cuts straight across a large turn: a dynamic needle spun half a turn in a step had
-    // it move nodes 6.7 m while the needle's corners went 0.44 m along their arcs, and the faces so
-    // stretched were left across the needle (generated seed 5451). A move longer than twice the
-    // corners' path is no reading of the step: the arc's result stands, and what it crossed is
-    // carried below. The patch may have grown; the nodes it gained are where the solve left them.
-    Real longest = 0;
-    for (Index v = 0; v < m_patch.vertexCount(); ++v) {
-      longest = std::max(longest, length(m_patch.positions[v] - m_patch.solvedPositions[v]));
-    }
-    if (longest > 2 * farthestCornerPath(piece, motion)) {
-      for (Index v = 0; v < m_patch.vertexCount(); ++v) {
-        const bool arc = v < arcVertices;
-        m_patch.positions[v] = arc ? m_arcPositions[v] : m_patch.solvedPositions[v];
-        m_patch.moved[v] = arc ? m_arcMoved[v] : 0;
-        if (arc) m_patch.directions[v] = m_arcDirections[v];
-      }
-      counts = bothReadings;
-    } else {
-      counts.nodesMoved += bothReadings.nodesMoved;
-      counts.facesMoved += bothReadings.facesMoved;
-      if (!endsInside()) return;
-    }
+    counts.nodesMoved += bothReadings.nodesMoved;
+    counts.facesMoved += bothReadings.facesMoved;
+    if (!endsInside()) return;
   }
   const SeparationCounts carried = carryCrossedFaces(piece, motion, tool.m_options.separation, m_patch);
   counts.nodesMoved += carried.nodesMoved;

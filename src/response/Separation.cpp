@@ -967,12 +967,6 @@ Pose PieceMotion::at(Real t) const {
   return body * m_inBody;
 }
 
-Real farthestCornerPath(const ToolModel& piece, const PieceMotion& motion) {
-  Pose poses[kMostSamples + 1];
-  for (int k = 0; k <= motion.samples(); ++k) poses[k] = motion.at(Real(k) / Real(motion.samples()));
-  return farthestPath(piece, motion, poses);
-}
-
 bool triangleMeetsPiece(const ToolModel& piece, const Vec3& a, const Vec3& b, const Vec3& c, Real tolerance) {
   const Vec3 triangle[3] = {a, b, c};
   return TriangleAxes(piece, triangle, nullptr, tolerance).meets();

@@ -207,10 +207,6 @@ class THINTOOL_API SoftBodySolver : public btDefaultSoftBodySolver {
   std::vector<Tool*> m_active;  // tools whose stage runs this step
   int m_piecesNear = 0;         // (piece, soft body) pairs with soft features near, this pass
   SeparationPatch m_patch;
-  // The patch as the arc's reading left it, while keepOutsideClosedBody tries the chord's.
-  std::vector<Vec3> m_arcPositions;
-  std::vector<Vec3> m_arcDirections;
-  std::vector<unsigned char> m_arcMoved;
   std::vector<NearPiece> m_nearPieces;  // the pieces near the one being separated
   std::vector<Index> m_vertexOfNode;  // soft node -> patch vertex, kInvalidIndex when absent
   std::vector<unsigned char> m_faceInPatch;  // soft face -> whether the patch has it

@@ -234,10 +234,6 @@ SeparationCounts carryMeetingFaces(const ToolModel& piece, const PieceMotion& mo
 SeparationCounts carryCrossedFaces(const ToolModel& piece, const PieceMotion& motion,
                                    const SeparationSettings& settings, SeparationPatch& patch);
 
-/// The longest path a corner of the piece takes along its arc over the step (m): how far the step
-/// can explain a move of the stage.
-Real farthestCornerPath(const ToolModel& piece, const PieceMotion& motion);
-
 /// Whether triangle (a, b, c) and the piece, all in the piece's frame, overlap by more than
 /// tolerance along every separating axis.
 bool triangleMeetsPiece(const ToolModel& piece, const Vec3& a, const Vec3& b, const Vec3& c, Real tolerance);
