@@ -169,42 +169,53 @@ TEST(Stability, BrokenSoftFacesAreSkippedAndCounted) {
   world.removeSoftBody(&sheet);
 }
 
-// A pinned sheet that a kinematic plate presses, so that the energy guard runs on it; after 20
-// steps one free node far from the plate gets a force worth 1000 m/s in a step (the kind of kick
-// Bullet's pressure gives a body squeezed flat). Returns how far that node moves in the step, and
-// leaves in userBound what the world's btSoftBodyWorldInfo::m_maxDisplacement is after it.
+// A pinned sheet in a world without gravity, and a kinematic plate registered as a tool with the
+// given energy guard, which presses the sheet step after step so that the guard runs on it.
+struct PressedSheet {
+  static constexpr btScalar kStep = btScalar(1) / 60;
+  SoftWorld soft{btVector3(0, 0, 0)};
+  std::unique_ptr<btSoftBody> sheet = pinnedSheet(soft.world.getWorldInfo());
+  KinematicPlate plate{btScalar(1.05)};
+  Tool* tool = nullptr;
+
+  explicit PressedSheet(const EnergyGuardSettings& guard) {
+    soft.world.addSoftBody(sheet.get());
+    soft.world.addRigidBody(&plate.body);
+    ToolOptions options;
+    options.energyGuard = guard;
+    tool = &addTool(soft.world, plate.body, options);
+  }
+  ~PressedSheet() {
+    removeTool(soft.world, plate.body);
+    soft.world.removeRigidBody(&plate.body);
+    soft.world.removeSoftBody(sheet.get());
+  }
+  // The plate 5 mm lower each step.
+  void step(int step) {
+    plate.moveTo(btScalar(1.05 - 0.005 * step));
+    soft.world.stepSimulation(kStep, 1, kStep);
+  }
+};
+
+// After 20 steps of the pressed sheet one free node far from the plate gets a force worth 1000 m/s
+// in a step (the kind of kick Bullet's pressure gives a body squeezed flat). Returns how far that
+// node moves in the step, and leaves in userBound what the world's
+// btSoftBodyWorldInfo::m_maxDisplacement is after it.
 double kickedNodeMove(const EnergyGuardSettings& guard, btScalar& userBound) {
-  SoftWorld soft(btVector3(0, 0, 0));
-  btSoftRigidDynamicsWorld& world = soft.world;
-  world.getWorldInfo().m_maxDisplacement = 500;
-
-  std::unique_ptr<btSoftBody> made = pinnedSheet(world.getWorldInfo());
-  btSoftBody& sheet = *made;
-  world.addSoftBody(&sheet);
-
-  KinematicPlate plate(1.05);
-  world.addRigidBody(&plate.body);
-  ToolOptions options;
-  options.energyGuard = guard;
-  addTool(world, plate.body, options);
-
-  const btScalar dt = btScalar(1) / 60;
+  PressedSheet pressed(guard);
+  pressed.soft.world.getWorldInfo().m_maxDisplacement = 500;
+  btSoftBody& sheet = *pressed.sheet;
   const int kicked = sheetNode(1, 1);
   btVector3 before(0, 0, 0);
   for (int step = 1; step <= 21; ++step) {
-    plate.moveTo(btScalar(1.05 - 0.005 * step));
     if (step == 21) {
       before = sheet.m_nodes[kicked].m_x;
-      sheet.addForce(btVector3(0, 1000 / dt, 0), kicked);  // 1 kg: 1000 m/s in one step
+      sheet.addForce(btVector3(0, 1000 / PressedSheet::kStep, 0), kicked);  // 1 kg: 1000 m/s in one step
     }
-    world.stepSimulation(dt, 1, dt);
+    pressed.step(step);
   }
-  userBound = world.getWorldInfo().m_maxDisplacement;
-  const double moved = double((sheet.m_nodes[kicked].m_x - before).length());
-  removeTool(world, plate.body);
-  world.removeRigidBody(&plate.body);
-  world.removeSoftBody(&sheet);
-  return moved;
+  userBound = pressed.soft.world.getWorldInfo().m_maxDisplacement;
+  return double((sheet.m_nodes[kicked].m_x - before).length());
 }
 
 TEST(Stability, AForceKickInTheStepAfterAGuardedOneIsBounded) {
@@ -222,50 +233,35 @@ TEST(Stability, AForceKickInTheStepAfterAGuardedOneIsBounded) {
   EXPECT_GT(unbounded, 50 * bounded) << "without the bound the kick goes through, as in stock Bullet";
 }
 
-// A pinned sheet that a kinematic plate presses, so that the energy guard runs on it; after 20
-// steps one free node far from the plate is lifted 0.5 m off the sheet, at rest, so that Bullet's
-// solve snaps its stretched links back within the step, far faster than the plate or any node
-// moves. Returns the fastest node's move over a step, as a speed, over that step and the 9 after
-// it, and how many moves the guard shortened.
+// After 20 steps of the pressed sheet one free node far from the plate is lifted 0.5 m off the
+// sheet, at rest, so that Bullet's solve snaps its stretched links back within the step, far
+// faster than the plate or any node moves. Returns the fastest node's move over a step, as a speed,
+// over that step and the 9 after it, and how many moves the guard shortened.
 struct SnapBack {
   double fastest = 0;  // m/s
   Index shortened = 0;
 };
 
 SnapBack snapBack(const EnergyGuardSettings& guard) {
-  SoftWorld soft(btVector3(0, 0, 0));
-  btSoftRigidDynamicsWorld& world = soft.world;
-  std::unique_ptr<btSoftBody> made = pinnedSheet(world.getWorldInfo());
-  btSoftBody& sheet = *made;
-  world.addSoftBody(&sheet);
-  KinematicPlate plate(1.05);
-  world.addRigidBody(&plate.body);
-  ToolOptions options;
-  options.energyGuard = guard;
-  Tool& tool = addTool(world, plate.body, options);
-
-  const btScalar dt = btScalar(1) / 60;
+  PressedSheet pressed(guard);
+  btSoftBody& sheet = *pressed.sheet;
   SnapBack result;
   std::vector<btVector3> before(static_cast<std::size_t>(sheet.m_nodes.size()));
   for (int step = 1; step <= 30; ++step) {
-    plate.moveTo(btScalar(1.05 - 0.005 * step));
     if (step == 21) {
       btSoftBody::Node& lifted = sheet.m_nodes[sheetNode(1, 1)];
       lifted.m_x += btVector3(0, btScalar(0.5), 0);
       lifted.m_v = btVector3(0, 0, 0);
     }
     for (int i = 0; i < sheet.m_nodes.size(); ++i) before[static_cast<std::size_t>(i)] = sheet.m_nodes[i].m_x;
-    world.stepSimulation(dt, 1, dt);
+    pressed.step(step);
     if (step < 21) continue;
-    result.shortened += tool.report().diagnostics.lastWord.movesShortened;
+    result.shortened += pressed.tool->report().diagnostics.lastWord.movesShortened;
     for (int i = 0; i < sheet.m_nodes.size(); ++i) {
       const double move = double((sheet.m_nodes[i].m_x - before[static_cast<std::size_t>(i)]).length());
-      result.fastest = std::max(result.fastest, move / double(dt));
+      result.fastest = std::max(result.fastest, move / double(PressedSheet::kStep));
     }
   }
-  removeTool(world, plate.body);
-  world.removeRigidBody(&plate.body);
-  world.removeSoftBody(&sheet);
   return result;
 }
 
