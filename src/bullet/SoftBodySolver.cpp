@@ -192,14 +192,13 @@ void SoftBodySolver::solveSoftBodies() {
   for (int i = 0; i < m_softBodySet.size(); ++i) {
     btSoftBody& body = *m_softBodySet[i];
     if (!body.isActive()) continue;
+    // A guarded body's nodes move no farther in the solve than the guard's speed bound allows
+    // over the step: bounding only the velocity the solve leaves would let a node jump across the
+    // step and keep the jump. Only where the last word follows, which puts back on its side a node
+    // that the shorter move leaves in a tool (the response's own push is part of the move).
     const BodyEnergy& energy = m_energy[static_cast<std::size_t>(i)];
-    const bool guarded = energy.predicted >= 0;
-    if (collectHolds(body) || lastWordReaches(body) || guarded) {
-      // A guarded body's nodes move no farther in the solve than the guard's speed bound allows
-      // over the step: bounding only the velocity the solve leaves would let a node jump across
-      // the step and keep the jump. Only where the last word follows, which puts back on its side
-      // a node that the shorter move leaves in a tool (the response's own push is part of the move).
-      const bool shorten = guarded && energy.lastWordFollows;
+    const bool shorten = energy.predicted >= 0 && energy.lastWordFollows;
+    if (collectHolds(body) || lastWordReaches(body) || shorten) {
       const btScalar longestMove = shorten ? btScalar(fastestAllowed(energy)) * body.m_sst.sdt : BT_LARGE_FLOAT;
       solveInStages(body, longestMove);
     } else {
@@ -316,15 +315,12 @@ void SoftBodySolver::limitHoldReach(btSoftBody& body) {
   }
 }
 
-void SoftBodySolver::countShortenedMoves(const btSoftBody& body, Index shortened, Index nonFinite) {
+template <typename Report>
+void SoftBodySolver::reportToToolsNear(const btSoftBody& body, const Report& report) {
   for (Tool* tool : m_configuration.tools()) {
-    for (const auto& pair : tool->m_pairs) {
-      if (pair->softBody == &body && pair->live) {
-        tool->m_lastWord.movesShortened += shortened;
-        tool->m_lastWord.nonFiniteWrites += nonFinite;
-        break;
-      }
-    }
+    const auto near = std::find_if(tool->m_pairs.begin(), tool->m_pairs.end(),
+                                   [&](const auto& pair) { return pair->softBody == &body && pair->live; });
+    if (near != tool->m_pairs.end()) report(tool->m_lastWord);
   }
 }
 
@@ -413,7 +409,12 @@ void SoftBodySolver::solveInStages(btSoftBody& body, btScalar longestMove) {
         surveyNode(survey, *surveyed, i, node.m_x, node.m_q, m_dynamicToolsActive && !(node.m_im > 0));
       }
     }
-    if (shortened > 0 || nonFinite > 0) countShortenedMoves(body, shortened, nonFinite);
+    if (shortened > 0 || nonFinite > 0) {
+      reportToToolsNear(body, [&](LastWordDiagnostics& lastWord) {
+        lastWord.movesShortened += shortened;
+        lastWord.nonFiniteWrites += nonFinite;
+      });
+    }
     if (surveyed != nullptr) {
       const auto passEnd = std::chrono::steady_clock::now();
       finishSurvey(survey, *surveyed, body);
@@ -694,16 +695,11 @@ void SoftBodySolver::guardEnergy() {
     }
     boundNextStep(double(btSqrt(leftSquared)));
     if (slowed == 0 && removed == 0 && nonFinite == 0) continue;
-    for (Tool* tool : m_configuration.tools()) {
-      for (const auto& pair : tool->m_pairs) {
-        if (pair->softBody == &softBody && pair->live) {
-          tool->m_lastWord.nodesSlowed += slowed;
-          tool->m_lastWord.energyRemoved += removed;
-          tool->m_lastWord.nonFiniteWrites += nonFinite;
-          break;
-        }
-      }
-    }
+    reportToToolsNear(softBody, [&](LastWordDiagnostics& lastWord) {
+      lastWord.nodesSlowed += slowed;
+      lastWord.energyRemoved += removed;
+      lastWord.nonFiniteWrites += nonFinite;
+    });
   }
 }
 

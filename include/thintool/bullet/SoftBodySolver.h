@@ -184,8 +184,9 @@ class THINTOOL_API SoftBodySolver : public btDefaultSoftBodySolver {
   // longestMove (m): a guarded body's bound on each node's move over the step (fastestAllowed),
   // BT_LARGE_FLOAT for none.
   void solveInStages(btSoftBody& body, btScalar longestMove);
-  // Reports, to the tools near the body, the nodes whose move solveInStages shortened.
-  void countShortenedMoves(const btSoftBody& body, Index shortened, Index nonFinite);
+  // Calls report with the last-word diagnostics of each tool with a live pair on the body.
+  template <typename Report>
+  void reportToToolsNear(const btSoftBody& body, const Report& report);
   // The energy guard's bound on a node's speed (EnergyGuardSettings), m/s.
   static double fastestAllowed(const BodyEnergy& energy);
   // Splits a contact stage's moves of the nodes that several tools held among those tools.
