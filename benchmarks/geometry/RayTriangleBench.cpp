@@ -5,15 +5,19 @@
 // small triangles so that some hit (the hitRate counter says how many). SegmentTriangle pairs
 // segment i with triangle i; the two SegmentEightTriangles benchmarks test segment i against the
 // eight triangles of i's block of the same data, once with the scalar kernel and once with the
-// batched one, so that the two compare on identical pairs.
+// batched one (dispatched, and each variant this CPU runs by name), so that they compare on
+// identical pairs.
 
 #include <thintool/geometry/RayTriangle.h>
 
 #include <benchmark/benchmark.h>
 
 #include <array>
+#include <algorithm>
 #include <bitset>
+#include <cstdint>
 #include <random>
+#include <string>
 #include <vector>
 
 namespace thintool {
@@ -76,7 +80,18 @@ void SegmentEightTrianglesScalar(benchmark::State& state) {
 }
 BENCHMARK(SegmentEightTrianglesScalar);
 
+// Argument: -1 for the dispatched kernel, else a BlockKernel; a variant the CPU does not run is
+// skipped.
 void SegmentEightTrianglesBatched(benchmark::State& state) {
+  const bool dispatched = state.range(0) < 0;
+  const auto kernel = static_cast<BlockKernel>(std::max<std::int64_t>(state.range(0), 0));
+  const std::vector<BlockKernel>& available = availableBlockKernels();
+  if (!dispatched && std::find(available.begin(), available.end(), kernel) == available.end()) {
+    state.SkipWithError("this CPU does not run the kernel");
+    return;
+  }
+  state.SetLabel(dispatched ? std::string("dispatched: ") + blockKernelName(available.back())
+                            : blockKernelName(kernel));
   const Data data = randomData();
   std::vector<TriangleBlock> blocks(kCount / kLanes);
   for (int i = 0; i < kCount; ++i) {
@@ -86,7 +101,10 @@ void SegmentEightTrianglesBatched(benchmark::State& state) {
   long hits = 0;
   for (auto _ : state) {
     for (int i = 0; i < kCount; ++i) {
-      const unsigned mask = intersectSegmentTriangleBlock(data.segments[i][0], data.segments[i][1], blocks[i / kLanes]).mask;
+      const TriangleBlock& block = blocks[i / kLanes];
+      const unsigned mask =
+          dispatched ? intersectSegmentTriangleBlock(data.segments[i][0], data.segments[i][1], block).mask
+                     : intersectSegmentTriangleBlock(kernel, data.segments[i][0], data.segments[i][1], block).mask;
       hits += static_cast<long>(std::bitset<kLanes>(mask).count());
     }
     benchmark::DoNotOptimize(hits);
@@ -94,7 +112,11 @@ void SegmentEightTrianglesBatched(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * kCount * kLanes);
   state.counters["hitRate"] = benchmark::Counter(double(hits) / (state.iterations() * kCount * kLanes));
 }
-BENCHMARK(SegmentEightTrianglesBatched);
+BENCHMARK(SegmentEightTrianglesBatched)
+    ->Arg(-1)
+    ->Arg(static_cast<int>(BlockKernel::Portable))
+    ->Arg(static_cast<int>(BlockKernel::Avx2))
+    ->Arg(static_cast<int>(BlockKernel::Avx512));
 
 }  // namespace
 }  // namespace thintool

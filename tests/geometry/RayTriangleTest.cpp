@@ -7,9 +7,11 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <random>
+#include <string>
 #include <vector>
 
 namespace thintool {
@@ -142,26 +144,36 @@ bool sameBits(Real a, Real b) {
   return x == y;
 }
 
-// Runs one segment against triangles (at most a block) both ways; returns the batched hit mask.
+// Runs one segment against triangles (at most a block) with the scalar kernel and with every
+// block kernel this CPU runs, the dispatched one too; returns the dispatched hit mask.
 unsigned expectBlockAgrees(const Vec3& origin, const Vec3& delta, const std::vector<Triangle>& triangles) {
   TriangleBlock block;
   for (const Triangle& t : triangles) {
     EXPECT_TRUE(block.push(t[0], t[1], t[2]));
   }
-  const SegmentTriangleBlockHits batch = intersectSegmentTriangleBlock(origin, delta, block);
-  for (int k = 0; k < TriangleBlock::kSize; ++k) {
-    SegmentTriangleHit scalar;  // an empty lane: a miss
-    if (k < static_cast<int>(triangles.size())) {
-      const Triangle& t = triangles[static_cast<std::size_t>(k)];
-      scalar = intersectSegmentTriangle(origin, delta, t[0], t[1], t[2]);
+  const auto expectLanesAgree = [&](const SegmentTriangleBlockHits& batch, const char* kernel) {
+    for (int k = 0; k < TriangleBlock::kSize; ++k) {
+      SegmentTriangleHit scalar;  // an empty lane: a miss
+      if (k < static_cast<int>(triangles.size())) {
+        const Triangle& t = triangles[static_cast<std::size_t>(k)];
+        scalar = intersectSegmentTriangle(origin, delta, t[0], t[1], t[2]);
+      }
+      EXPECT_EQ(batch.hit(k), scalar.hit) << kernel << ", lane " << k;
+      EXPECT_TRUE(sameBits(batch.t[k], scalar.t)) << kernel << ", lane " << k << ": t " << batch.t[k] << " vs "
+                                                 << scalar.t;
+      EXPECT_TRUE(sameBits(batch.u[k], scalar.u)) << kernel << ", lane " << k << ": u " << batch.u[k] << " vs "
+                                                 << scalar.u;
+      EXPECT_TRUE(sameBits(batch.v[k], scalar.v)) << kernel << ", lane " << k << ": v " << batch.v[k] << " vs "
+                                                 << scalar.v;
     }
-    EXPECT_EQ(batch.hit(k), scalar.hit) << "lane " << k;
-    EXPECT_TRUE(sameBits(batch.t[k], scalar.t)) << "lane " << k << ": t " << batch.t[k] << " vs " << scalar.t;
-    EXPECT_TRUE(sameBits(batch.u[k], scalar.u)) << "lane " << k << ": u " << batch.u[k] << " vs " << scalar.u;
-    EXPECT_TRUE(sameBits(batch.v[k], scalar.v)) << "lane " << k << ": v " << batch.v[k] << " vs " << scalar.v;
+    EXPECT_EQ(batch.mask >> TriangleBlock::kSize, 0U) << kernel;
+  };
+  for (const BlockKernel kernel : availableBlockKernels()) {
+    expectLanesAgree(intersectSegmentTriangleBlock(kernel, origin, delta, block), blockKernelName(kernel));
   }
-  EXPECT_EQ(batch.mask >> TriangleBlock::kSize, 0U);
-  return batch.mask;
+  const SegmentTriangleBlockHits dispatched = intersectSegmentTriangleBlock(origin, delta, block);
+  expectLanesAgree(dispatched, "dispatched");
+  return dispatched.mask;
 }
 
 int hitCount(unsigned mask) {
@@ -322,6 +334,27 @@ TEST(RayTriangleBlock, AgreesWithTheScalarKernelOnRandomBlocks) {
   // The cases must exercise hits, corner and edge hits among them.
   EXPECT_GT(hits, 10000);
   EXPECT_GT(edgeHits, 1000);
+}
+
+TEST(RayTriangleBlock, DispatchesToTheWidestKernelTheCpuRuns) {
+  const std::vector<BlockKernel>& kernels = availableBlockKernels();
+  ASSERT_FALSE(kernels.empty());
+  EXPECT_EQ(kernels.front(), BlockKernel::Portable);
+  EXPECT_EQ(std::string(blockKernelName(BlockKernel::Avx512)), "avx512");
+  // Ordered by width, so that the dispatch's choice, the last, is the widest.
+  for (std::size_t k = 1; k < kernels.size(); ++k) {
+    EXPECT_GT(static_cast<int>(kernels[k]), static_cast<int>(kernels[k - 1]));
+  }
+  // A kernel the CPU does not run answers as the portable one.
+  TriangleBlock block;
+  ASSERT_TRUE(block.push(kV0, kV1, kV2));
+  for (const BlockKernel kernel : {BlockKernel::Portable, BlockKernel::Avx2, BlockKernel::Avx512}) {
+    EXPECT_EQ(intersectSegmentTriangleBlock(kernel, {0.2, 0.2, 1}, {0, 0, -2}, block).mask, 1U)
+        << blockKernelName(kernel);
+  }
+  std::printf("block kernels on this CPU:");
+  for (const BlockKernel kernel : kernels) std::printf(" %s", blockKernelName(kernel));
+  std::printf("\n");
 }
 
 }  // namespace

@@ -24,11 +24,14 @@
 /// branch, so that the compiler vectorises it; it computes every quantity in the scalar kernel's
 /// order and applies the same parallel and tolerance rules, so each lane's hit, t, u and v are
 /// those intersectSegmentTriangle returns for that triangle, bit for bit wherever the compiler
-/// fuses no multiply-add into either (x86-64 without -mfma; GCC in ISO mode fuses none at all).
+/// fuses no multiply-add into the scalar kernel (x86-64's baseline has no fused instruction; built
+/// with -mfma or for another architecture, the scalar kernel may round differently). It is compiled
+/// for several instruction sets and dispatched at run time (BlockKernel).
 
 #include <thintool/core/Math.h>
 
 #include <limits>
+#include <vector>
 
 namespace thintool {
 
@@ -93,13 +96,16 @@ inline SegmentTriangleHit intersectSegmentTriangle(const Vec3& origin, const Vec
 }
 
 /// Up to eight triangles by coordinate: the first corner and the two edges from it, as the scalar
-/// kernel forms them. Empty lanes hold NaN, which every test rejects, so the kernel needs no count.
+/// kernel forms them, and |e1 × e2|², which depends on the triangle alone, formed once here as the
+/// scalar kernel forms it. Empty lanes hold NaN, which every test rejects, so the kernel needs no
+/// count.
 struct TriangleBlock {
   static constexpr int kSize = 8;
 
-  alignas(64) Real v0[3][kSize];  ///< [axis][lane]
-  alignas(64) Real e1[3][kSize];  ///< v1 - v0
-  alignas(64) Real e2[3][kSize];  ///< v2 - v0
+  alignas(64) Real v0[3][kSize];         ///< [axis][lane]
+  alignas(64) Real e1[3][kSize];         ///< v1 - v0
+  alignas(64) Real e2[3][kSize];         ///< v2 - v0
+  alignas(64) Real areaSquared4[kSize];  ///< |e1|²·|e2|² - (e1·e2)², by the Lagrange identity
   int count = 0;
 
   TriangleBlock() { clear(); }
@@ -113,6 +119,9 @@ struct TriangleBlock {
         e2[axis][lane] = nan;
       }
     }
+    for (int lane = 0; lane < kSize; ++lane) {
+      areaSquared4[lane] = nan;
+    }
     count = 0;
   }
 
@@ -125,6 +134,8 @@ struct TriangleBlock {
       e1[axis][lane] = edge1[axis];
       e2[axis][lane] = edge2[axis];
     }
+    const Real e1e2 = dot(edge1, edge2);
+    areaSquared4[lane] = lengthSquared(edge1) * lengthSquared(edge2) - e1e2 * e1e2;
   }
 
   /// Appends a triangle in the next lane; false when the block is full.
@@ -148,64 +159,32 @@ struct SegmentTriangleBlockHits {
   bool hit(int lane) const { return ((mask >> lane) & 1U) != 0; }
 };
 
-/// intersectSegmentTriangle(origin, delta, ...) against every lane of block.
-inline SegmentTriangleBlockHits intersectSegmentTriangleBlock(const Vec3& origin, const Vec3& delta,
-                                                              const TriangleBlock& block) {
-  constexpr int kLanes = TriangleBlock::kSize;
-  constexpr Real kParallelCosineSquared = kParallelCosine * kParallelCosine;
-  // Locals, and results written to a local object, so that no store in the loop may alias a load:
-  // at -O2, GCC vectorises only loops that need no run-time alias check.
-  const Real ox = origin.x, oy = origin.y, oz = origin.z;
-  const Real dx = delta.x, dy = delta.y, dz = delta.z;
-  const Real deltaSquared = dx * dx + dy * dy + dz * dz;
-  SegmentTriangleBlockHits out;
-  // Hit flags as doubles: SSE2 has no 64-bit integer compare, so a flag of a double's width must
-  // be a double for the loop to vectorise without -msse4.2.
-  alignas(64) Real flags[kLanes];
-  for (int k = 0; k < kLanes; ++k) {
-    const Real e1x = block.e1[0][k], e1y = block.e1[1][k], e1z = block.e1[2][k];
-    const Real e2x = block.e2[0][k], e2y = block.e2[1][k], e2z = block.e2[2][k];
+/// The instruction sets the block kernel is built for. Debian's packages target generic x86-64
+/// (SSE2: two lanes of a double at once); the wider variants are compiled into the same binary
+/// and chosen at the first call by what the CPU reports, so the package stays portable.
+enum class BlockKernel {
+  Portable,  ///< the compiler's baseline for the target, on any CPU
+  Avx2,      ///< four lanes a vector; x86-64 only
+  Avx512,    ///< all eight lanes in one vector; x86-64 only
+};
 
-    // p = delta × e2, det = e1·p, and |e1 × e2|² by the Lagrange identity, as the scalar kernel.
-    const Real px = dy * e2z - dz * e2y;
-    const Real py = dz * e2x - dx * e2z;
-    const Real pz = dx * e2y - dy * e2x;
-    const Real det = e1x * px + e1y * py + e1z * pz;
-    const Real e1e2 = e1x * e2x + e1y * e2y + e1z * e2z;
-    const Real e1Squared = e1x * e1x + e1y * e1y + e1z * e1z;
-    const Real e2Squared = e2x * e2x + e2y * e2y + e2z * e2z;
-    const Real areaSquared4 = e1Squared * e2Squared - e1e2 * e1e2;
-    const Real parallelBound = kParallelCosineSquared * deltaSquared * areaSquared4;
-    // Lanes that fail the parallel test divide by a zero or tiny det here; their results are
-    // discarded below, and IEEE division does not trap.
-    const Real invDet = 1 / det;
+/// The variants this CPU runs, Portable first and the one the dispatch uses last.
+const std::vector<BlockKernel>& availableBlockKernels();
 
-    const Real sx = ox - block.v0[0][k];
-    const Real sy = oy - block.v0[1][k];
-    const Real sz = oz - block.v0[2][k];
-    const Real u = (sx * px + sy * py + sz * pz) * invDet;
-    const Real qx = sy * e1z - sz * e1y;
-    const Real qy = sz * e1x - sx * e1z;
-    const Real qz = sx * e1y - sy * e1x;
-    const Real v = (dx * qx + dy * qy + dz * qz) * invDet;
-    const Real t = (e2x * qx + e2y * qy + e2z * qz) * invDet;
+/// The variant's name: "portable", "avx2" or "avx512".
+const char* blockKernelName(BlockKernel kernel);
 
-    // Acceptance tests, so that NaN anywhere is a miss; & rather than && keeps the loop branch-free.
-    const bool hit = (det * det > parallelBound) & (u >= -kBarycentricTolerance) &
-                     (u <= 1 + kBarycentricTolerance) & (v >= -kBarycentricTolerance) &
-                     (u + v <= 1 + kBarycentricTolerance) & (t >= 0) & (t <= 1);
-    out.t[k] = hit ? t : 0;
-    out.u[k] = hit ? u : 0;
-    out.v[k] = hit ? v : 0;
-    flags[k] = hit ? 1 : 0;
-  }
-  unsigned mask = 0;
-  for (int k = 0; k < kLanes; ++k) {
-    mask |= static_cast<unsigned>(flags[k] != 0) << k;
-  }
-  out.mask = mask;
-  return out;
-}
+/// intersectSegmentTriangle(origin, delta, ...) against every lane of block, with the widest
+/// variant the CPU runs. Every variant computes each quantity in the scalar kernel's order with
+/// no fused multiply-add (the file is compiled with -ffp-contract=off), so each lane's hit, t, u
+/// and v are those intersectSegmentTriangle returns for that triangle, bit for bit.
+SegmentTriangleBlockHits intersectSegmentTriangleBlock(const Vec3& origin, const Vec3& delta,
+                                                       const TriangleBlock& block);
+
+/// The same with a chosen variant, for tests and benchmarks; one the CPU does not run (not in
+/// availableBlockKernels()) falls back to Portable.
+SegmentTriangleBlockHits intersectSegmentTriangleBlock(BlockKernel kernel, const Vec3& origin, const Vec3& delta,
+                                                       const TriangleBlock& block);
 
 /// Unnormalised normal of triangle (v0, v1, v2): counter-clockwise vertices face along it.
 constexpr Vec3 triangleNormal(const Vec3& v0, const Vec3& v1, const Vec3& v2) { return cross(v1 - v0, v2 - v0); }
