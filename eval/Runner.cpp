@@ -246,7 +246,7 @@ ToolOptions optionsFor(const SceneSpec& scene, const ToolSpec& tool) {
   options.force.enabled = scene.force;
   if (scene.friction.has_value()) {
     options.response.friction.enabled = *scene.friction;
-    options.bullet.frictionFromBodies = false;  // a scene's own friction is ThinTool's coefficients
+    options.bullet.frictionFromBodies = scene.frictionFromBodies;
   }
   options.separation.enabled = options.separation.enabled && scene.lastWord;
   options.bullet.holdInSolver = options.bullet.holdInSolver && scene.holds;

@@ -138,9 +138,12 @@ struct SceneSpec {
   std::vector<ToolSpec> tools;
   AlgorithmKind algorithm = AlgorithmKind::Swept;
   bool force = false;          ///< ThinTool: the Hunt–Crossley force (force error needs it)
-  /// ThinTool's Coulomb friction at the tool. Unset, the library's default: each pair's coefficient
-  /// from the bodies (BulletSettings::frictionFromBodies); true, ThinTool's own coefficients; false, none.
+  /// ThinTool's Coulomb friction at the tool. Unset, the library's default (off); true, on, with
+  /// ThinTool's own coefficients unless frictionFromBodies; false, off.
   std::optional<bool> friction;
+  /// With friction on: each pair's coefficient from the bodies, as stock Bullet's node contact (the
+  /// soft body's kDF times the tool's friction, BulletSettings::frictionFromBodies).
+  bool frictionFromBodies = false;
   bool lastWord = true;        ///< ThinTool: the last word after the soft solver (ToolOptions::separation); "paper" and "ray-only" never have it
   bool holds = true;           ///< ThinTool: the response's holds in the soft solver (BulletSettings::holdInSolver)
   std::optional<double> holdPlaneReach;  ///< ThinTool: how far the holds reach along their planes (BulletSettings::holdPlaneReach); unset, the library's default

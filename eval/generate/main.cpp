@@ -44,6 +44,8 @@ inside the soft body, pierced faces, penetration deeper than 0.1 mm, non-finite 
                      (EnergyGuardSettings::boundForcesNextStep)
   --scan-faces       swept detection reads every soft face instead of walking a face tree
                      (BulletSettings::scanFaces)
+  --friction         ThinTool's friction on, with stock Bullet's coefficient: the soft body's kDF
+                     times the tool's friction (FrictionSettings, BulletSettings::frictionFromBodies)
   --within-thickness judge only the scenes in which every tool moved less than its own thickness in
                      every step (the narrowest width of its thinnest piece); the rest run, and are
                      counted apart
@@ -115,6 +117,7 @@ int main(int argc, char** argv) {
   bool energyGuard = true;
   bool boundForces = true;
   bool scanFaces = false;
+  bool friction = false;
   bool withinThickness = false;
   std::string sceneFolder = THINTOOL_EVAL_SCENES;
   try {
@@ -150,6 +153,8 @@ int main(int argc, char** argv) {
         boundForces = false;
       } else if (arg == "--scan-faces") {
         scanFaces = true;
+      } else if (arg == "--friction") {
+        friction = true;
       } else if (arg == "--within-thickness") {
         withinThickness = true;
       } else if (arg == "--verbose") {
@@ -188,6 +193,10 @@ int main(int argc, char** argv) {
       scene.energyGuard = energyGuard;
       scene.boundForces = boundForces;
       scene.scanFaces = scanFaces;
+      if (friction) {
+        scene.friction = true;
+        scene.frictionFromBodies = true;
+      }
       if (verbose) std::printf("%s\n", describeScene(scene).c_str());
       RunOptions options;
       if (verbose) {
@@ -217,12 +226,12 @@ int main(int argc, char** argv) {
     energy += verdict.energy;
     refused += verdict.refused;
     const std::string reach = holdReach.has_value() ? " --hold-reach " + formatNumber(*holdReach) : "";
-    std::printf("seed %llu failed: %s; reproduce: %s --seed %llu --algorithm %s%s%s%s%s%s%s%s --verbose\n",
+    std::printf("seed %llu failed: %s; reproduce: %s --seed %llu --algorithm %s%s%s%s%s%s%s%s%s --verbose\n",
                 static_cast<unsigned long long>(seed), joinReasons(verdict).c_str(), argv[0],
                 static_cast<unsigned long long>(seed), algorithmKey(algorithm), lastWord ? "" : " --no-last-word",
                 holds ? "" : " --no-holds", reach.c_str(), energyGuard ? "" : " --no-energy-guard",
                 boundForces ? "" : " --no-force-bound", scanFaces ? " --scan-faces" : "",
-                withinThickness ? " --within-thickness" : "");
+                friction ? " --friction" : "", withinThickness ? " --within-thickness" : "");
     std::fflush(stdout);
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
