@@ -75,8 +75,10 @@ __attribute__((always_inline))
 #endif
 inline unsigned maskOf(const Real (&flags)[TriangleBlock::kSize]) {
   unsigned mask = 0;
-  for (int k = 0; k < TriangleBlock::kSize; ++k) {
-    mask |= static_cast<unsigned>(flags[k] != 0) << k;
+  unsigned bit = 1;
+  for (const Real flag : flags) {
+    mask |= flag != 0 ? bit : 0U;
+    bit <<= 1;
   }
   return mask;
 }
