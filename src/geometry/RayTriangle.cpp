@@ -8,7 +8,6 @@
 // multiply-add, and a fused variant would round differently from the scalar kernel.
 #include <thintool/geometry/RayTriangle.h>
 
-
 #if (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__)
 #define THINTOOL_BLOCK_KERNEL_X86 1
 #include <immintrin.h>
@@ -126,16 +125,18 @@ std::vector<BlockKernel> detectKernels() {
   return kernels;
 }
 
+constexpr int kKernelCount = 3;  // BlockKernel's values
+
 // Each kernel's function, the portable one where the CPU does not run it.
 struct KernelTable {
-  BlockFunction functions[3] = {portableKernel, portableKernel, portableKernel};
+  BlockFunction functions[kKernelCount] = {portableKernel, portableKernel, portableKernel};
   BlockFunction best = portableKernel;
 
   KernelTable() {
     for (const BlockKernel kernel : availableBlockKernels()) {
 #ifdef THINTOOL_BLOCK_KERNEL_X86
-      if (kernel == BlockKernel::Avx2) functions[1] = avx2Kernel;
-      if (kernel == BlockKernel::Avx512) functions[2] = avx512Kernel;
+      if (kernel == BlockKernel::Avx2) functions[static_cast<int>(BlockKernel::Avx2)] = avx2Kernel;
+      if (kernel == BlockKernel::Avx512) functions[static_cast<int>(BlockKernel::Avx512)] = avx512Kernel;
 #endif
       best = functions[static_cast<int>(kernel)];
     }
@@ -175,7 +176,7 @@ SegmentTriangleBlockHits intersectSegmentTriangleBlock(const Vec3& origin, const
 SegmentTriangleBlockHits intersectSegmentTriangleBlock(BlockKernel kernel, const Vec3& origin, const Vec3& delta,
                                                        const TriangleBlock& block) {
   const int index = static_cast<int>(kernel);
-  const BlockFunction function = index >= 0 && index < 3 ? kernelTable().functions[index] : portableKernel;
+  const BlockFunction function = index >= 0 && index < kKernelCount ? kernelTable().functions[index] : portableKernel;
   return function(origin, delta, block);
 }
 
