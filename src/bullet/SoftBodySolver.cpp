@@ -315,6 +315,16 @@ void SoftBodySolver::limitHoldReach(btSoftBody& body) {
   }
 }
 
+bool SoftBodySolver::guardingToolNear(const btSoftBody& body) const {
+  for (const Tool* tool : m_configuration.tools()) {
+    if (!tool->m_options.energyGuard.enabled) continue;
+    for (const auto& pair : tool->m_pairs) {
+      if (pair->softBody == &body && pair->live) return true;
+    }
+  }
+  return false;
+}
+
 template <typename Report>
 void SoftBodySolver::reportToToolsNear(const btSoftBody& body, const Report& report) {
   for (Tool* tool : m_configuration.tools()) {
@@ -581,6 +591,14 @@ void SoftBodySolver::measureEnergy(btScalar timeStep) {
       return (node.m_x - node.m_q) * inverseStepBt;
     });
     energy.predictedFastest = double(btSqrt(fastestSquared));
+    // A pressure body's own speed is what it kept through the last steps, not its prediction: the
+    // fastest node the guard left in the last step, or speedFactor times the fastest of the latest
+    // step the guard did not act in.
+    const SoftBodyCache* speeds = softBody.m_cfg.kPR != 0 ? findCache(softBody) : nullptr;
+    if (speeds != nullptr && speeds->speedStep == m_step) {
+      energy.predictedFastest = std::min(energy.predictedFastest,
+                                         std::max(energy.speedFactor * speeds->ownFastest, speeds->endFastest));
+    }
     // The response's moves are not the body's own motion: what they add is taken back out.
     for (Tool* tool : m_configuration.tools()) {
       if (!tool->m_options.energyGuard.enabled) continue;
@@ -635,11 +653,30 @@ void SoftBodySolver::predictMotion(btScalar timeStep) {
   }
 }
 
+void SoftBodySolver::recordPressureSpeeds(btSoftBody& softBody, bool guarded, double fastest) {
+  SoftBodyCache* cache = findCache(softBody);
+  if (cache == nullptr || softBody.m_cfg.kPR == 0) return;
+  cache->endFastest = fastest;
+  if (!guarded) cache->ownFastest = fastest;
+  cache->speedStep = m_step;
+}
+
 void SoftBodySolver::guardEnergy() {
   for (int s = 0; s < m_softBodySet.size(); ++s) {
     const BodyEnergy& energy = m_energy[static_cast<std::size_t>(s)];
-    if (energy.predicted < 0) continue;
     btSoftBody& softBody = *m_softBodySet[s];
+    if (energy.predicted < 0) {
+      // Unguarded, a pressure body near a guarding tool keeps its own speed for the steps the
+      // guard acts in.
+      if (softBody.m_cfg.kPR != 0 && softBody.isActive() && guardingToolNear(softBody)) {
+        btScalar fastestSquared = 0;
+        for (int i = 0; i < softBody.m_nodes.size(); ++i) {
+          fastestSquared = std::max(fastestSquared, softBody.m_nodes[i].m_v.length2());
+        }
+        recordPressureSpeeds(softBody, false, double(btSqrt(fastestSquared)));
+      }
+      continue;
+    }
     // The energy about the centre of mass, as the solve left it: the body's motion as a whole is
     // the tool's push or its fall, which the bound must not damp.
     btScalar fastestSquared = 0;
@@ -676,7 +713,10 @@ void SoftBodySolver::guardEnergy() {
           std::max(energy.speedFactor * std::max({energy.restingSpeed, energy.toolFastest, fastestLeft}), acrossBody);
     };
     boundNextStep(fastest);
-    if (!(scale < 1) && !(fastest > fastestAllowed)) continue;  // within both bounds: no second pass
+    if (!(scale < 1) && !(fastest > fastestAllowed)) {  // within both bounds: no second pass
+      recordPressureSpeeds(softBody, true, fastest);
+      continue;
+    }
     Index slowed = 0;
     Index nonFinite = 0;
     btScalar leftSquared = 0;
@@ -694,6 +734,7 @@ void SoftBodySolver::guardEnergy() {
       leftSquared = std::max(leftSquared, node.m_v.length2());
     }
     boundNextStep(double(btSqrt(leftSquared)));
+    recordPressureSpeeds(softBody, true, double(btSqrt(leftSquared)));
     if (slowed == 0 && removed == 0 && nonFinite == 0) continue;
     reportToToolsNear(softBody, [&](LastWordDiagnostics& lastWord) {
       lastWord.nodesSlowed += slowed;

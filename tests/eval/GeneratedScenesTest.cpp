@@ -119,31 +119,54 @@ TEST(GeneratedScenes, TheEnergyGuardHoldsScenesThatExplodeWithoutIt) {
   expectStageHoldsSeeds({1553u, 2230u}, "the guard", [](SceneSpec& scene) { scene.energyGuard = false; });
 }
 
-// The energy guard's bound on the forces of the step after a guarded one
-// (EnergyGuardSettings::boundForcesNextStep) is what holds these seeds: a pressure body that a fast
-// tool squeezes flat or turns through gets Bullet's pressure (kPR·area/|volume|) at a volume near
-// zero. A needle turning 159° a step in a pressure vessel (4726), a blade turning 68° a step in
-// one (1025), a plate turning 47° a step in a pressure ellipsoid (4615), a plate crushing a
-// pressure ball onto the ground, which the bound holds since it counts the body's extent only in
-// a grasp (748).
-TEST(GeneratedScenes, TheForceBoundHoldsSqueezedPressureBodies) {
-  expectStageHoldsSeeds({4726u, 1025u, 4615u, 748u}, "the bound", [](SceneSpec& scene) { scene.boundForces = false; });
+// Pressure bodies that a fast tool squeezes flat or turns through get Bullet's pressure
+// (kPR·area/|volume|) at a volume near zero: a needle turning 159° a step in a pressure vessel
+// (4726), a blade turning 68° a step in one (1025), a plate turning 47° a step in a pressure
+// ellipsoid (4615), a plate crushing a pressure ball onto the ground (748). The energy guard holds
+// each: its bound on the next step's forces (EnergyGuardSettings::boundForcesNextStep) and its
+// reading of a pressure body's own speed from the steps before (either one alone holds these
+// four), without which every one explodes.
+TEST(GeneratedScenes, TheEnergyGuardHoldsSqueezedPressureBodies) {
+  expectStageHoldsSeeds({4726u, 1025u, 4615u, 748u}, "the guard", [](SceneSpec& scene) { scene.energyGuard = false; });
 }
 
 // Holds that reach along their whole planes keep a squeezed pressure body from bulging past the
 // tool, until Bullet's pressure (kPR·area/volume) throws it apart; reaching four skins past the skin
 // they let it: a kinematic plate crushing a pressure ball onto the ground (748), whose volume turns
-// negative and which Bullet's pressure throws through the ground at 131 m/s. The energy guard's
-// bound on the next step's forces holds that seed as well, so it is off here.
+// negative and which Bullet's pressure throws through the ground. The energy guard holds that seed
+// as well, so it is off here.
 TEST(GeneratedScenes, AHoldPlaneReachLetsASqueezedPressureBodyBulgePastTheTool) {
   SceneSpec scene = generateScene(748, kScenes);
-  scene.boundForces = false;
+  scene.energyGuard = false;
   const Verdict wholePlanes = runAndJudge(scene);
   EXPECT_TRUE(wholePlanes.energy) << "with whole planes: " << joinReasons(wholePlanes);
   scene.holdPlaneReach = 4;
   const Verdict reaching = runAndJudge(scene);
   EXPECT_FALSE(reaching.failed) << "reaching 4 skins: " << joinReasons(reaching) << "\n  reproduce: " << reproduce(748)
-                                << " --no-force-bound --hold-reach 4";
+                                << " --no-energy-guard --hold-reach 4";
+}
+
+// The energy guard reads a light pressure body's own speed from the steps before, not from Bullet's
+// prediction, which applies the pressure that the links take back in the solve (predicted 49 to
+// 205 m/s where the body ends its steps at 7): a pressure vessel beside a slow plate, with friction
+// (189); a pressure ellipsoid beside a slow plate, its faces scanned (6261); a pressure ellipsoid
+// that a blade turning 98° a step sticks to, with friction (5587). Each failed the energy check
+// while the guard's fallback was the predicted speed: nodes at 67, 70 and 3,340 m/s.
+TEST(GeneratedScenes, TheEnergyGuardKeepsPressureBodiesToTheirOwnSpeed) {
+  const auto expectPasses = [](std::uint64_t seed, const char* option, void (*set)(SceneSpec&)) {
+    SceneSpec scene = generateScene(seed, kScenes);
+    set(scene);
+    const Verdict verdict = runAndJudge(scene);
+    EXPECT_FALSE(verdict.failed) << "seed " << seed << ": " << joinReasons(verdict) << "\n  reproduce: "
+                                 << reproduce(seed) << " " << option;
+  };
+  const auto withFriction = [](SceneSpec& scene) {
+    scene.friction = true;
+    scene.frictionFromBodies = true;
+  };
+  expectPasses(189, "--friction", withFriction);
+  expectPasses(6261, "--scan-faces", [](SceneSpec& scene) { scene.scanFaces = true; });
+  expectPasses(5587, "--friction", withFriction);
 }
 
 // The paper's discrete detection (with the last word and the energy guard) on scenes in which

@@ -76,6 +76,10 @@ class THINTOOL_API SoftBodySolver : public btDefaultSoftBodySolver {
   void measureEnergy(btScalar timeStep);
   // After the last word: the guarded bodies' velocities brought within their bounds.
   void guardEnergy();
+  // A pressure body's fastest node at the end of this step (SoftBodyCache::endFastest), where the
+  // guard acted on it or, unguarded, where a guarding tool's pair with it is live.
+  void recordPressureSpeeds(btSoftBody& softBody, bool guarded, double fastest);
+  bool guardingToolNear(const btSoftBody& body) const;
 
   // One pass of the tool's pieces over the soft bodies; returns whether it moved anything. With
   // lastResort, each piece only carries the faces that still meet it (carryMeetingFaces).
@@ -133,6 +137,14 @@ class THINTOOL_API SoftBodySolver : public btDefaultSoftBodySolver {
     // the fastest node, tool corner or restingSpeed, and, in a grasp, the body's extent over the step.
     double nextForceBound = 0;
     int boundStep = -1;
+    // A pressure body's fastest node at the end of step speedStep, as the guard left it, and at the
+    // end of the latest step the guard did not act in (m/s; negative: not measured). Bullet
+    // applies the pressure in its prediction and the links take most of it back in the solve, so
+    // the predicted speed of a light pressure body (60 to 200 m/s where it ends a step at 7) is no
+    // measure of its own motion; these are.
+    double endFastest = -1;
+    double ownFastest = -1;
+    int speedStep = -1;
   };
   SoftBodyCache& cacheOf(const btSoftBody& softBody);
   SoftBodyCache* findCache(const btSoftBody& softBody);  // nullptr: none yet

@@ -31,10 +31,15 @@ namespace thintool {
 ///   corner), and the body's fastest node as Bullet predicted it before the solve (its forces and
 ///   gravity applied). The factor is not applied to the predicted speed, which carries the last
 ///   step's: a body the guard holds to twice the tool's speed would otherwise be allowed twice that
-///   in the next step, and so on. The bound holds for a node's velocity after the last word and,
-///   where the tool's last word runs (separation.enabled), for its move in Bullet's solve, shortened
-///   to it before the last word, which puts back on its side a node the shorter move leaves in the
-///   tool;
+///   in the next step, and so on. A pressure body's prediction is no measure of its motion: Bullet
+///   applies the pressure there and the links take most of it back in the solve (a light vessel is
+///   predicted at 60 to 200 m/s where it ends its steps at 7). For such a body, measured in the
+///   step before, the predicted speed counts no higher than the fastest node the guard left then,
+///   or speedFactor times the fastest of the latest step the guard did not act in, which the guard
+///   measures while a guarding tool's pair with the body is live. The bound holds for a node's
+///   velocity after the last word and, where the tool's last word runs (separation.enabled), for
+///   its move in Bullet's solve, shortened to it before the last word, which puts back on its side
+///   a node the shorter move leaves in the tool;
 /// - the body's kinetic energy about its centre of mass, as the solve left it, is at most
 ///   (1 + energySlack) times the same energy before the solve (each node's motion as Bullet set
 ///   it up, (x - q)/dt, pose matching included, less the response's moves) plus ½·m·u² for each
@@ -46,7 +51,8 @@ namespace thintool {
 /// so that a falling or pushed body keeps its motion as a whole); positions are touched only where
 /// a move in the solve was too long. It costs two passes over the body's nodes in the steps the
 /// response moves a node of it, one before the solve and one after, and a third when it has to
-/// slow nodes; the moves are checked in the solve's own last pass over the nodes.
+/// slow nodes; the moves are checked in the solve's own last pass over the nodes. A pressure body
+/// costs one pass in each other step in which a guarding tool's pair with it is live.
 ///
 /// With boundForcesNextStep, the step after a guarded one bounds what the body's forces add: a
 /// pressure body that a fast tool has squeezed flat gets Bullet's pressure kPR·area/|volume| at a
