@@ -1084,10 +1084,34 @@ SeparationCounts separateFromPiece(const ToolModel& piece, const PieceMotion& mo
 
 SeparationCounts carryMeetingFaces(const ToolModel& piece, const PieceMotion& motion,
                                    const SeparationSettings& settings, SeparationPatch& patch) {
-  SeparationCounts counts = carryAndCount(piece, motion, settings, true, false, noOthers, patch);
-  if (counts.facesPierced == 0) return counts;
   Pose poses[kMostSamples + 1];
   for (int k = 0; k <= motion.samples(); ++k) poses[k] = motion.at(Real(k) / Real(motion.samples()));
+  SeparationCounts counts = carryAndCount(piece, motion, settings, true, false, noOthers, patch);
+  // Another piece's last pass may have pushed a node through this one after this one's passes had
+  // judged it: it ends outside, carried through by both readings, and no face of it meets the piece
+  // (generated seed 2098: jaws turning 173° a step took turns to push a node across each other,
+  // and the second jaw's last pass left it across the first). Its faces go along with the piece.
+  const auto carriedThrough = [&](std::size_t f) {
+    for (Index v : patch.faces[f]) {
+      Vec3 local;
+      if (patch.inverseMasses[v] > 0 &&
+          judgeNode(piece, motion, poses, patch.startPositions[v], patch.positions[v], settings.clearance, local).fix) {
+        return true;
+      }
+    }
+    return false;
+  };
+  bool anyCarriedThrough = false;
+  for (std::size_t f = 0; f < patch.faces.size() && !anyCarriedThrough; ++f) anyCarriedThrough = carriedThrough(f);
+  if (anyCarriedThrough) {
+    const SeparationCounts through = carryAndCount(piece, motion, settings, true, true, carriedThrough, patch);
+    if (through.nodesMoved > 0) {
+      const Index moved = counts.nodesMoved;
+      counts = through;
+      counts.nodesMoved += moved;
+    }
+  }
+  if (counts.facesPierced == 0) return counts;
   const Index slid = slidePinnedFacesClear(piece, motion, poses, settings.clearance, patch);
   if (slid == 0) return counts;
   counts.nodesMoved += slid;

@@ -216,8 +216,10 @@ SeparationCounts separateFromPiece(const ToolModel& piece, const PieceMotion& mo
 /// share that motion, so a node carried by one is where every other piece left it room at the
 /// start. A group that touches a face with a pinned node stays, since that face cannot come along
 /// and another piece may meet it; the free nodes of a face with a pinned node that still meets the
-/// piece then slide past its rim, as separateFromPiece's do. Writes positions and moved; returns
-/// what it did and what is left.
+/// piece then slide past its rim, as separateFromPiece's do. So do the nodes of a face with a node
+/// that ends outside the piece but was carried through it by both readings of its path (another
+/// piece's last pass pushed it across this one), when no more faces then meet the piece. Writes
+/// positions and moved; returns what it did and what is left.
 SeparationCounts carryMeetingFaces(const ToolModel& piece, const PieceMotion& motion,
                                    const SeparationSettings& settings, SeparationPatch& patch);
 
