@@ -45,22 +45,28 @@ std::string caseName(const ::testing::TestParamInfo<std::size_t>& info) {
 
 INSTANTIATE_TEST_SUITE_P(Cases, StressCaseTest, ::testing::Range<std::size_t>(0, stressCases().size()), caseName);
 
+// The default response's stiffness cases expect containment, which StressCaseTest asserts case by
+// case; the paper's expect only finite nodes. Here, that the paper's explicit force does fail
+// somewhere: the first of its cases that lets a node through or into the tool answers that, so
+// the cases after it (the slowest, at 1/10,000 s) need not run again.
 TEST(Stability, ThePapersForceResponseFailsWhereTheDefaultHolds) {
-  int paperCases = 0, paperFailures = 0, defaultCases = 0;
+  int paperCases = 0, defaultContained = 0;
+  bool paperFailed = false;
   for (const StressCase& c : stressCases()) {
     if (c.group != "stiffness" || c.scene.toolOptions.force.enabled) continue;
-    const StressOutcome outcome = runStressCase(c);
-    if (c.scene.toolOptions.response.kind == ResponseKind::PaperForce) {
-      ++paperCases;
-      paperFailures += !meets(outcome, Expectation::Contained);
-    } else {
-      ++defaultCases;
-      EXPECT_TRUE(meets(outcome, Expectation::Contained)) << c.name;
+    if (c.scene.toolOptions.response.kind != ResponseKind::PaperForce) {
+      defaultContained += c.expectation == Expectation::Contained ? 1 : 0;
+      continue;
+    }
+    ++paperCases;
+    if (!meets(runStressCase(c), Expectation::Contained)) {
+      paperFailed = true;
+      break;
     }
   }
-  EXPECT_GT(defaultCases, 0);
+  EXPECT_GT(defaultContained, 0) << "the default response's stiffness cases expect containment";
   EXPECT_GT(paperCases, 0);
-  EXPECT_GT(paperFailures, 0) << "an explicit f = k·t has a stiffness and step it cannot hold";
+  EXPECT_TRUE(paperFailed) << "an explicit f = k·t has a stiffness and step it cannot hold";
 }
 
 TEST(Stability, ANonFiniteToolPoseIsSkippedCountedAndTheTissueStaysHeld) {
