@@ -8,8 +8,9 @@
 //
 //   falcon_demo [--trajectory FILE] [--fast] [--out DIR] [--falcon FIRMWARE.bin] [--no-response]
 //
-// --no-response leaves the nodes where Bullet puts them (ResponseKind::None): the force alone,
-// to compare how steady it is with and without the response.
+// --no-response turns the collision stage's response off (ResponseKind::None): the nodes are put
+// back out of the spatula by the last word alone, after Bullet's solve, with no solver holds; to
+// compare how steady the force is with and without the response.
 
 #include "HapticDemo.h"
 #include "Plot.h"
