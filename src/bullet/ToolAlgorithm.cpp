@@ -355,14 +355,14 @@ void ToolAlgorithm::gather(PieceStep& step) {
   if (step.swept) {
     reach.include(transformedBounds(step.model.bounds, step.previousPose));
   }
-  // Swept: the faces that meet the tool's whole motion during theirs. Scanned (BulletSettings::
-  // scanFaces), every face's motion is read, where no tree exists. Walked, the tree is searched
-  // first twice as far out as the soft nodes near the tool moved last step (the solver's pull
-  // adds to the motion), or as the soft body moved as a whole this step, if farther.
   // The force model counts a face with a node up to touchTolerance past the skin: the gather
   // takes those faces too, or whether a touching face counted would turn on whether the gather
   // found it, step by step (the hand feels that as chatter).
   if (options.force.enabled) reach = reach.expanded(options.force.touchTolerance);
+  // Swept: the faces that meet the tool's whole motion during theirs. Scanned (BulletSettings::
+  // scanFaces), every face's motion is read, where no tree exists. Walked, the tree is searched
+  // first twice as far out as the soft nodes near the tool moved last step (the solver's pull
+  // adds to the motion), or as the soft body moved as a whole this step, if farther.
   if (step.swept && m_tool.m_options.bullet.scanFaces && softBody.m_fdbvt.empty()) {
     step.facesWalked = gatherPatchByScan(softBody, reach.expanded(step.fullSkin), state);
   } else {
