@@ -315,22 +315,21 @@ void SoftBodySolver::limitHoldReach(btSoftBody& body) {
   }
 }
 
+bool SoftBodySolver::hasLivePair(const Tool& tool, const btSoftBody& body) {
+  return std::any_of(tool.m_pairs.begin(), tool.m_pairs.end(),
+                     [&](const auto& pair) { return pair->softBody == &body && pair->live; });
+}
+
 bool SoftBodySolver::guardingToolNear(const btSoftBody& body) const {
-  for (const Tool* tool : m_configuration.tools()) {
-    if (!tool->m_options.energyGuard.enabled) continue;
-    for (const auto& pair : tool->m_pairs) {
-      if (pair->softBody == &body && pair->live) return true;
-    }
-  }
-  return false;
+  return std::any_of(m_configuration.tools().begin(), m_configuration.tools().end(), [&](const Tool* tool) {
+    return tool->m_options.energyGuard.enabled && hasLivePair(*tool, body);
+  });
 }
 
 template <typename Report>
 void SoftBodySolver::reportToToolsNear(const btSoftBody& body, const Report& report) {
   for (Tool* tool : m_configuration.tools()) {
-    const auto near = std::find_if(tool->m_pairs.begin(), tool->m_pairs.end(),
-                                   [&](const auto& pair) { return pair->softBody == &body && pair->live; });
-    if (near != tool->m_pairs.end()) report(tool->m_lastWord);
+    if (hasLivePair(*tool, body)) report(tool->m_lastWord);
   }
 }
 

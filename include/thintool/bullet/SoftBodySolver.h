@@ -80,6 +80,8 @@ class THINTOOL_API SoftBodySolver : public btDefaultSoftBodySolver {
   // guard acted on it or, unguarded, where a guarding tool's pair with it is live.
   void recordPressureSpeeds(btSoftBody& softBody, bool guarded, double fastest);
   bool guardingToolNear(const btSoftBody& body) const;
+  // Whether the tool's pair with the body is live this step.
+  static bool hasLivePair(const Tool& tool, const btSoftBody& body);
 
   // One pass of the tool's pieces over the soft bodies; returns whether it moved anything. With
   // lastResort, each piece only carries the faces that still meet it (carryMeetingFaces).
