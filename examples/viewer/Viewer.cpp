@@ -4,6 +4,7 @@
 
 #include <thintool/bullet/Convert.h>
 #include <thintool/bullet/Tool.h>
+#include <thintool/tool/ToolModel.h>
 
 #include <BulletSoftBody/btSoftBody.h>
 #include <BulletSoftBody/btSoftRigidDynamicsWorld.h>

@@ -5,6 +5,7 @@
 #include "SweptProxy.h"
 #include "ToolAlgorithm.h"
 #include "ToolShape.h"
+#include "ToolState.h"
 
 #include <thintool/bullet/CollisionConfiguration.h>
 #include <thintool/core/Error.h>
@@ -17,7 +18,11 @@
 #include <BulletSoftBody/btSoftBody.h>
 
 #include <algorithm>
+#include <cstdint>
+#include <memory>
 #include <sstream>
+#include <unordered_map>
+#include <vector>
 
 namespace thintool {
 
@@ -74,26 +79,41 @@ struct CollisionConfiguration::CreateFunc : btCollisionAlgorithmCreateFunc {
   btCollisionAlgorithmCreateFunc* m_stock;
 };
 
+struct CollisionConfiguration::State {
+  std::unordered_map<const btCollisionObject*, std::unique_ptr<Tool>> tools;
+  std::vector<Tool*> toolOrder;  // the same tools in registration order, so that steps are repeatable
+  /// Swept tools' broadphase proxies, and their tools.
+  std::unordered_map<const btCollisionObject*, Tool*> proxies;
+  std::uint64_t toolsCreated = 0;
+  std::unique_ptr<CreateFunc> createFunc;
+  std::unique_ptr<CreateFunc> swappedCreateFunc;
+  /// Shared by the tools: how far their responses moved soft nodes in the current pass.
+  detail::CollisionPass pass;
+};
+
 CollisionConfiguration::CollisionConfiguration(const btDefaultCollisionConstructionInfo& info)
-    : btSoftBodyRigidBodyCollisionConfiguration(withRoomForToolAlgorithm(info)),
-      m_pass(std::make_unique<detail::CollisionPass>()) {
+    : btSoftBodyRigidBodyCollisionConfiguration(withRoomForToolAlgorithm(info)), m_state(std::make_unique<State>()) {
   // Every convex type shares the stock soft–convex create functions; box stands for them all.
-  m_createFunc = std::make_unique<CreateFunc>(
+  m_state->createFunc = std::make_unique<CreateFunc>(
       *this, btSoftBodyRigidBodyCollisionConfiguration::getCollisionAlgorithmCreateFunc(SOFTBODY_SHAPE_PROXYTYPE,
                                                                                           BOX_SHAPE_PROXYTYPE),
       false);
-  m_swappedCreateFunc = std::make_unique<CreateFunc>(
+  m_state->swappedCreateFunc = std::make_unique<CreateFunc>(
       *this, btSoftBodyRigidBodyCollisionConfiguration::getCollisionAlgorithmCreateFunc(BOX_SHAPE_PROXYTYPE,
                                                                                           SOFTBODY_SHAPE_PROXYTYPE),
       true);
 }
 
-// The tools go first: deleting a swept tool's proxy takes it out of m_proxies, which must still be
-// there.
+// The tools go first: deleting a swept tool's proxy takes it out of the proxies, which must still
+// be there.
 CollisionConfiguration::~CollisionConfiguration() {
-  m_toolOrder.clear();
-  m_tools.clear();
+  m_state->toolOrder.clear();
+  m_state->tools.clear();
 }
+
+std::size_t CollisionConfiguration::toolCount() const { return m_state->tools.size(); }
+
+const std::vector<Tool*>& CollisionConfiguration::tools() const { return m_state->toolOrder; }
 
 int CollisionConfiguration::algorithmSize() { return static_cast<int>(sizeof(detail::ToolAlgorithm)); }
 
@@ -110,8 +130,8 @@ btCollisionAlgorithm* CollisionConfiguration::createAlgorithm(btCollisionAlgorit
     return new (memory) detail::ToolAlgorithm(info, tool, mode, state, softBody, swapped);
   };
   if (softBody != nullptr) {
-    const auto proxy = m_proxies.find(toolWrap->getCollisionObject());
-    if (proxy != m_proxies.end()) {
+    const auto proxy = m_state->proxies.find(toolWrap->getCollisionObject());
+    if (proxy != m_state->proxies.end()) {
       return make(*proxy->second, Mode::WholeTool, nullptr);
     }
   }
@@ -127,16 +147,16 @@ btCollisionAlgorithm* CollisionConfiguration::createAlgorithm(btCollisionAlgorit
   if (piece >= tool->pieceCount()) {
     return stock.CreateCollisionAlgorithm(info, body0, body1);
   }
-  return make(*tool, Mode::OnePiece, &tool->pairState(*softBody, piece));
+  return make(*tool, Mode::OnePiece, &tool->state().pairState(*softBody, piece));
 }
 
 btCollisionAlgorithmCreateFunc* CollisionConfiguration::getCollisionAlgorithmCreateFunc(int proxyType0,
                                                                                        int proxyType1) {
   if (proxyType0 == SOFTBODY_SHAPE_PROXYTYPE && btBroadphaseProxy::isConvex(proxyType1)) {
-    return m_createFunc.get();
+    return m_state->createFunc.get();
   }
   if (btBroadphaseProxy::isConvex(proxyType0) && proxyType1 == SOFTBODY_SHAPE_PROXYTYPE) {
-    return m_swappedCreateFunc.get();
+    return m_state->swappedCreateFunc.get();
   }
   return btSoftBodyRigidBodyCollisionConfiguration::getCollisionAlgorithmCreateFunc(proxyType0, proxyType1);
 }
@@ -144,7 +164,7 @@ btCollisionAlgorithmCreateFunc* CollisionConfiguration::getCollisionAlgorithmCre
 Tool& CollisionConfiguration::addTool(btCollisionObject& body, const ToolOptions& requested) {
   ToolOptions options = requested;
   if (options.name.empty()) {
-    options.name = "tool " + std::to_string(m_toolsCreated + 1);
+    options.name = "tool " + std::to_string(m_state->toolsCreated + 1);
   }
   auto fail = [&options](const std::string& problem) { throw Error("tool '" + options.name + "': " + problem); };
   if (const Tool* existing = findTool(body)) {
@@ -175,27 +195,27 @@ Tool& CollisionConfiguration::addTool(btCollisionObject& body, const ToolOptions
 
   auto tool = std::make_unique<Tool>(body, options, std::move(models), std::move(transforms));
   Tool& registered = *tool;
-  registered.m_pass = m_pass.get();
-  m_tools.emplace(&body, std::move(tool));
-  m_toolOrder.push_back(&registered);
-  ++m_toolsCreated;
+  registered.state().pass = &m_state->pass;
+  m_state->tools.emplace(&body, std::move(tool));
+  m_state->toolOrder.push_back(&registered);
+  ++m_state->toolsCreated;
   body.setActivationState(DISABLE_DEACTIVATION);
   return registered;
 }
 
 bool CollisionConfiguration::removeTool(const btCollisionObject& body) {
-  const auto found = m_tools.find(&body);
-  if (found == m_tools.end()) {
+  const auto found = m_state->tools.find(&body);
+  if (found == m_state->tools.end()) {
     return false;
   }
-  m_toolOrder.erase(std::find(m_toolOrder.begin(), m_toolOrder.end(), found->second.get()));
-  m_tools.erase(found);
+  m_state->toolOrder.erase(std::find(m_state->toolOrder.begin(), m_state->toolOrder.end(), found->second.get()));
+  m_state->tools.erase(found);
   return true;
 }
 
 Tool* CollisionConfiguration::findTool(const btCollisionObject& object) const {
-  const auto found = m_tools.find(&object);
-  return found == m_tools.end() ? nullptr : found->second.get();
+  const auto found = m_state->tools.find(&object);
+  return found == m_state->tools.end() ? nullptr : found->second.get();
 }
 
 Tool& addTool(btCollisionWorld& world, btCollisionObject& body, const ToolOptions& options) {
@@ -208,8 +228,8 @@ Tool& addTool(btCollisionWorld& world, btCollisionObject& body, const ToolOption
   }
   Tool& tool = configuration->addTool(body, options);
   if (tool.options().swept) {
-    tool.m_proxy = new detail::SweptProxy(tool, configuration->m_proxies);
-    world.addCollisionObject(tool.m_proxy, btBroadphaseProxy::DefaultFilter, btBroadphaseProxy::AllFilter);
+    tool.state().proxy = new detail::SweptProxy(tool, configuration->m_state->proxies);
+    world.addCollisionObject(tool.state().proxy, btBroadphaseProxy::DefaultFilter, btBroadphaseProxy::AllFilter);
   }
   reroutePairs(world, body);
   return tool;
@@ -222,9 +242,9 @@ bool removeTool(btCollisionWorld& world, const btCollisionObject& body) {
     return false;
   }
   // Free the pairs' algorithms before the tool they point to.
-  if (tool->m_proxy != nullptr) {
-    world.removeCollisionObject(tool->m_proxy);
-    delete tool->m_proxy;  // leaves the registry and the tool
+  if (tool->state().proxy != nullptr) {
+    world.removeCollisionObject(tool->state().proxy);
+    delete tool->state().proxy;  // leaves the registry and the tool
   }
   reroutePairs(world, body);
   return configuration.removeTool(body);
@@ -235,6 +255,6 @@ Tool* findTool(btCollisionWorld& world, const btCollisionObject& body) {
   return configuration != nullptr ? configuration->findTool(body) : nullptr;
 }
 
-void detail::beginCollisionPass(btCollisionWorld& world) { configurationOf(world).m_pass->begin(); }
+void detail::beginCollisionPass(btCollisionWorld& world) { configurationOf(world).m_state->pass.begin(); }
 
 }  // namespace thintool

@@ -3,6 +3,8 @@
 #include <thintool/bullet/SoftBodySolver.h>
 
 #include "PairState.h"
+#include "SoftBodySolverImpl.h"
+#include "ToolState.h"
 #include "SoftSurface.h"
 #include "ToolReaction.h"
 #include "WriteCheck.h"
@@ -183,10 +185,23 @@ Real windingNumber(const btSoftBody& softBody, const Vec3& p, const PositionOf& 
 
 }  // namespace
 
-SoftBodySolver::SoftBodySolver(CollisionConfiguration& configuration) : m_configuration(configuration) {}
+SoftBodySolver::SoftBodySolver(CollisionConfiguration& configuration)
+    : m_impl(std::make_unique<detail::SoftBodySolverImpl>(configuration, m_softBodySet)) {}
 
-void SoftBodySolver::solveSoftBodies() {
-  // As btDefaultSoftBodySolver::solveConstraints: every active body of the solver's set, in order.
+SoftBodySolver::~SoftBodySolver() = default;
+
+void SoftBodySolver::solveConstraints(btScalar timeStep) { m_impl->solveConstraints(timeStep); }
+
+void SoftBodySolver::predictMotion(btScalar timeStep) { m_impl->predictMotion(timeStep); }
+
+namespace detail {
+
+SoftBodySolverImpl::SoftBodySolverImpl(CollisionConfiguration& configuration,
+                                       btAlignedObjectArray<btSoftBody*>& softBodySet)
+    : m_configuration(configuration), m_softBodySet(softBodySet) {}
+
+void SoftBodySolverImpl::solveSoftBodies() {
+  // As btDefaultSoftBodySolverImpl::solveConstraints: every active body of the solver's set, in order.
   // ThinTool's copy of Bullet's solve serves a body that tools hold, to measure the holds, and one
   // the last word will look at, to survey it in the solve's last pass over its nodes.
   for (int i = 0; i < m_softBodySet.size(); ++i) {
@@ -207,14 +222,14 @@ void SoftBodySolver::solveSoftBodies() {
   }
 }
 
-bool SoftBodySolver::lastWordReaches(const btSoftBody& body) const {
+bool SoftBodySolverImpl::lastWordReaches(const btSoftBody& body) const {
   if (!m_hasStepReach) return false;
   return std::any_of(m_active.begin(), m_active.end(), [&](const Tool* tool) {
     return !detail::ignores(body, tool->body()) && detail::lastWordActsOn(detail::stockReason(body));
   });
 }
 
-bool SoftBodySolver::collectHolds(btSoftBody& body) {
+bool SoftBodySolverImpl::collectHolds(btSoftBody& body) {
   m_held.clear();
   m_sharedHolds.clear();
   m_reachingHolds.clear();
@@ -222,13 +237,13 @@ bool SoftBodySolver::collectHolds(btSoftBody& body) {
   if (m_heldOfNode.size() < static_cast<std::size_t>(nodeCount)) m_heldOfNode.resize(nodeCount, -1);
   const btSoftBody::Node* const firstNode = nodeCount > 0 ? &body.m_nodes[0] : nullptr;
   for (Tool* tool : m_configuration.tools()) {
-    for (const auto& pair : tool->m_pairs) {
+    for (const auto& pair : tool->state().pairs) {
       const detail::PairState& state = *pair;
       if (state.softBody != &body || state.holdCount == 0 ||
           state.firstHold + state.holdCount > body.m_rcontacts.size()) {
         continue;
       }
-      const std::optional<Real>& planeReach = tool->m_options.bullet.holdPlaneReach;
+      const std::optional<Real>& planeReach = tool->state().options.bullet.holdPlaneReach;
       Pose piecePose;
       Real reach = 0;
       if (planeReach.has_value()) {
@@ -275,12 +290,12 @@ bool SoftBodySolver::collectHolds(btSoftBody& body) {
             [](const SharedHold& a, const SharedHold& b) { return a.contact < b.contact; });
   for (const HeldNode& held : m_held) {
     m_heldOfNode[static_cast<std::size_t>(held.node)] = -1;
-    if (held.bulletContact) ++held.tool->m_holdNodesShared;
+    if (held.bulletContact) ++held.tool->state().holdNodesShared;
   }
   return true;
 }
 
-void SoftBodySolver::replaySharedHolds(btSoftBody& body, double inverseStepSquared) {
+void SoftBodySolverImpl::replaySharedHolds(btSoftBody& body, double inverseStepSquared) {
   // Each hold as PSolve_RContacts solves it (a contact with a body of zero inverse mass whose
   // velocity aims at the plane, fillHoldContact in ToolAlgorithm.cpp), from where the stage
   // found the node, so that each tool gets the part of the move its own hold made.
@@ -301,11 +316,11 @@ void SoftBodySolver::replaySharedHolds(btSoftBody& body, double inverseStepSquar
     const btVector3 impulse = contact.m_c0 * (relative - tangential * contact.m_c3 + normal * (depth * contact.m_c4));
     const btVector3 move = impulse * contact.m_c2;
     held.replayed -= move;
-    addHoldForce(shared.tool->m_holdWrench, node, move, inverseStepSquared);
+    addHoldForce(shared.tool->state().holdWrench, node, move, inverseStepSquared);
   }
 }
 
-void SoftBodySolver::limitHoldReach(btSoftBody& body) {
+void SoftBodySolverImpl::limitHoldReach(btSoftBody& body) {
   for (const ReachingHold& hold : m_reachingHolds) {
     btSoftBody::RContact& contact = body.m_rcontacts[hold.contact];
     const btVector3& x = contact.m_node->m_x;
@@ -315,29 +330,29 @@ void SoftBodySolver::limitHoldReach(btSoftBody& body) {
   }
 }
 
-bool SoftBodySolver::hasLivePair(const Tool& tool, const btSoftBody& body) {
-  return std::any_of(tool.m_pairs.begin(), tool.m_pairs.end(),
+bool SoftBodySolverImpl::hasLivePair(const Tool& tool, const btSoftBody& body) {
+  return std::any_of(tool.state().pairs.begin(), tool.state().pairs.end(),
                      [&](const auto& pair) { return pair->softBody == &body && pair->live; });
 }
 
-bool SoftBodySolver::guardingToolNear(const btSoftBody& body) const {
+bool SoftBodySolverImpl::guardingToolNear(const btSoftBody& body) const {
   return std::any_of(m_configuration.tools().begin(), m_configuration.tools().end(), [&](const Tool* tool) {
-    return tool->m_options.energyGuard.enabled && hasLivePair(*tool, body);
+    return tool->state().options.energyGuard.enabled && hasLivePair(*tool, body);
   });
 }
 
 template <typename Report>
-void SoftBodySolver::reportToToolsNear(const btSoftBody& body, const Report& report) {
+void SoftBodySolverImpl::reportToToolsNear(const btSoftBody& body, const Report& report) {
   for (Tool* tool : m_configuration.tools()) {
-    if (hasLivePair(*tool, body)) report(tool->m_lastWord);
+    if (hasLivePair(*tool, body)) report(tool->state().lastWord);
   }
 }
 
-double SoftBodySolver::fastestAllowed(const BodyEnergy& energy) {
+double SoftBodySolverImpl::fastestAllowed(const BodyEnergy& energy) {
   return std::max(energy.speedFactor * std::max(1.0, energy.toolAtMovedNodes), energy.predictedFastest);
 }
 
-void SoftBodySolver::solveInStages(btSoftBody& body, btScalar longestMove) {
+void SoftBodySolverImpl::solveInStages(btSoftBody& body, btScalar longestMove) {
   // Bullet 3.24's btSoftBody::solveConstraints (btSoftBody.cpp), stage for stage and in its
   // arithmetic, so that a body solved here moves exactly as Bullet would move it.
   body.applyClusters(false);
@@ -384,7 +399,7 @@ void SoftBodySolver::solveInStages(btSoftBody& body, btScalar longestMove) {
         for (const HeldNode& held : m_held) {
           const btSoftBody::Node& node = body.m_nodes[held.node];
           if (held.severalTools || held.bulletContact) continue;
-          addHoldForce(held.tool->m_holdWrench, node, held.before - node.m_x, inverseStepSquared);
+          addHoldForce(held.tool->state().holdWrench, node, held.before - node.m_x, inverseStepSquared);
         }
         if (!m_sharedHolds.empty()) replaySharedHolds(body, inverseStepSquared);
       }
@@ -427,7 +442,7 @@ void SoftBodySolver::solveInStages(btSoftBody& body, btScalar longestMove) {
     if (surveyed != nullptr) {
       const auto passEnd = std::chrono::steady_clock::now();
       finishSurvey(survey, *surveyed, body);
-      LastWordDiagnostics& lastWord = m_active.front()->m_lastWord;
+      LastWordDiagnostics& lastWord = m_active.front()->state().lastWord;
       lastWord.microseconds +=
           std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
       lastWord.sharedPassMicroseconds += std::chrono::duration<double, std::micro>(passEnd - start).count();
@@ -454,14 +469,14 @@ void SoftBodySolver::solveInStages(btSoftBody& body, btScalar longestMove) {
   for (const ReachingHold& hold : m_reachingHolds) body.m_rcontacts[hold.contact].m_cti.m_normal = hold.normal;
 }
 
-void SoftBodySolver::solveConstraints(btScalar timeStep) {
+void SoftBodySolverImpl::solveConstraints(btScalar timeStep) {
   using Clock = std::chrono::steady_clock;
   const auto measureStart = Clock::now();
   measureEnergy(timeStep);
   const auto measureEnd = Clock::now();
   for (Tool* tool : m_configuration.tools()) {
-    tool->m_holdWrench = Wrench{};
-    tool->m_holdNodesShared = 0;
+    tool->state().holdWrench = Wrench{};
+    tool->state().holdNodesShared = 0;
   }
   // The tools whose last word runs, and where their pieces reach, before Bullet's solve, which
   // moves no tool: the solve surveys the bodies it solves for them.
@@ -469,8 +484,8 @@ void SoftBodySolver::solveConstraints(btScalar timeStep) {
   tools.clear();
   m_dynamicToolsActive = false;
   for (Tool* tool : m_configuration.tools()) {
-    tool->m_lastWord = LastWordDiagnostics{};
-    if (tool->m_options.separation.enabled && isFinite(toPose(tool->body().getWorldTransform()))) {
+    tool->state().lastWord = LastWordDiagnostics{};
+    if (tool->state().options.separation.enabled && isFinite(toPose(tool->body().getWorldTransform()))) {
       tools.push_back(tool);
       m_dynamicToolsActive = m_dynamicToolsActive || reactingBody(*tool) != nullptr;
     }
@@ -480,8 +495,8 @@ void SoftBodySolver::solveConstraints(btScalar timeStep) {
     const Pose now = toPose(tool->body().getWorldTransform());
     const Pose before = stepStart(*tool, now);
     for (Index p = 0; p < tool->pieceCount(); ++p) {
-      const PieceMotion motion(before, now, tool->m_options.separation.maxTurnPerSample, tool->pieceTransform(p));
-      m_stepReach.include(sweptBounds(tool->piece(p).bounds, motion).expanded(tool->m_options.separation.clearance));
+      const PieceMotion motion(before, now, tool->state().options.separation.maxTurnPerSample, tool->pieceTransform(p));
+      m_stepReach.include(sweptBounds(tool->piece(p).bounds, motion).expanded(tool->state().options.separation.clearance));
     }
   }
   m_hasStepReach = !tools.empty() && isFinite(m_stepReach.min) && isFinite(m_stepReach.max);
@@ -508,28 +523,28 @@ void SoftBodySolver::solveConstraints(btScalar timeStep) {
   const auto guardEnd = Clock::now();
   // The guard's time, before and after Bullet's solve, shared among the tools that have it on.
   const auto guarding = std::count_if(m_configuration.tools().begin(), m_configuration.tools().end(),
-                                      [](const Tool* tool) { return tool->m_options.energyGuard.enabled; });
+                                      [](const Tool* tool) { return tool->state().options.energyGuard.enabled; });
   if (guarding > 0) {
     const double share = (std::chrono::duration<double, std::micro>(measureEnd - measureStart).count() +
                           std::chrono::duration<double, std::micro>(guardEnd - guardStart).count()) /
                          double(guarding);
     for (Tool* tool : m_configuration.tools()) {
-      if (tool->m_options.energyGuard.enabled) tool->m_lastWord.microseconds += share;
+      if (tool->state().options.energyGuard.enabled) tool->state().lastWord.microseconds += share;
     }
   }
   for (Tool* tool : tools) {
-    tool->m_separatedPose = toPose(tool->body().getWorldTransform());
-    tool->m_hasSeparatedPose = true;
-    tool->m_separationJump = false;
-    tool->m_lastWord.ran = true;
+    tool->state().separatedPose = toPose(tool->body().getWorldTransform());
+    tool->state().hasSeparatedPose = true;
+    tool->state().separationJump = false;
+    tool->state().lastWord.ran = true;
   }
 }
 
-Pose SoftBodySolver::stepStart(const Tool& tool, const Pose& now) {
-  return tool.m_hasSeparatedPose && !tool.m_separationJump ? tool.m_separatedPose : now;
+Pose SoftBodySolverImpl::stepStart(const Tool& tool, const Pose& now) {
+  return tool.state().hasSeparatedPose && !tool.state().separationJump ? tool.state().separatedPose : now;
 }
 
-void SoftBodySolver::measureEnergy(btScalar timeStep) {
+void SoftBodySolverImpl::measureEnergy(btScalar timeStep) {
   if (m_energy.size() < static_cast<std::size_t>(m_softBodySet.size())) {
     m_energy.resize(static_cast<std::size_t>(m_softBodySet.size()));
   }
@@ -541,7 +556,7 @@ void SoftBodySolver::measureEnergy(btScalar timeStep) {
     // Guarded when a tool's response moved a node of it in the collision pass.
     bool guarded = false;
     for (Tool* tool : m_configuration.tools()) {
-      const EnergyGuardSettings& settings = tool->m_options.energyGuard;
+      const EnergyGuardSettings& settings = tool->state().options.energyGuard;
       if (!settings.enabled) continue;
       // The tool's motion over the step, as the last word reads it: a point of the tool at x moved
       // from before·now⁻¹·x.
@@ -549,7 +564,7 @@ void SoftBodySolver::measureEnergy(btScalar timeStep) {
       const Pose before = stepStart(*tool, now);
       bool guarding = false;
       double corner = 0;
-      for (const auto& pair : tool->m_pairs) {
+      for (const auto& pair : tool->state().pairs) {
         if (pair->softBody != &softBody || !pair->live) continue;
         if (!pair->response.corrections.empty() || pair->holdCount > 0) ++energy.piecesHolding;
         if (pair->response.corrections.empty()) continue;
@@ -563,7 +578,7 @@ void SoftBodySolver::measureEnergy(btScalar timeStep) {
         energy.speedFactor = std::max(energy.speedFactor, double(settings.speedFactor));
         energy.energySlack = std::max(energy.energySlack, double(settings.energySlack));
         energy.restingSpeed = std::max(energy.restingSpeed, double(settings.restingSpeed));
-        energy.lastWordFollows = energy.lastWordFollows || tool->m_options.separation.enabled;
+        energy.lastWordFollows = energy.lastWordFollows || tool->state().options.separation.enabled;
         for (const NodeCorrection& correction : pair->response.corrections) {
           const btSoftBody::Node* node = movedNode(softBody, *pair, correction);
           if (node == nullptr) continue;
@@ -600,8 +615,8 @@ void SoftBodySolver::measureEnergy(btScalar timeStep) {
     }
     // The response's moves are not the body's own motion: what they add is taken back out.
     for (Tool* tool : m_configuration.tools()) {
-      if (!tool->m_options.energyGuard.enabled) continue;
-      for (const auto& pair : tool->m_pairs) {
+      if (!tool->state().options.energyGuard.enabled) continue;
+      for (const auto& pair : tool->state().pairs) {
         if (pair->softBody != &softBody || !pair->live) continue;
         for (const NodeCorrection& correction : pair->response.corrections) {
           const btSoftBody::Node* node = movedNode(softBody, *pair, correction);
@@ -620,7 +635,7 @@ void SoftBodySolver::measureEnergy(btScalar timeStep) {
   }
 }
 
-void SoftBodySolver::predictMotion(btScalar timeStep) {
+void SoftBodySolverImpl::predictMotion(btScalar timeStep) {
   for (int s = 0; s < m_softBodySet.size(); ++s) {
     btSoftBody& softBody = *m_softBodySet[s];
     if (!softBody.isActive()) continue;
@@ -652,7 +667,7 @@ void SoftBodySolver::predictMotion(btScalar timeStep) {
   }
 }
 
-void SoftBodySolver::recordPressureSpeeds(btSoftBody& softBody, bool guarded, double fastest) {
+void SoftBodySolverImpl::recordPressureSpeeds(btSoftBody& softBody, bool guarded, double fastest) {
   SoftBodyCache* cache = findCache(softBody);
   if (cache == nullptr || softBody.m_cfg.kPR == 0) return;
   cache->endFastest = fastest;
@@ -660,7 +675,7 @@ void SoftBodySolver::recordPressureSpeeds(btSoftBody& softBody, bool guarded, do
   cache->speedStep = m_step;
 }
 
-void SoftBodySolver::guardEnergy() {
+void SoftBodySolverImpl::guardEnergy() {
   for (int s = 0; s < m_softBodySet.size(); ++s) {
     const BodyEnergy& energy = m_energy[static_cast<std::size_t>(s)];
     btSoftBody& softBody = *m_softBodySet[s];
@@ -698,7 +713,7 @@ void SoftBodySolver::guardEnergy() {
     const double removed = scale < 1 ? internal - bound : 0;
     // No node faster than the bound: the tool gives a node its own speed at most, a stiff link a
     // few times that within a step. Then the energy's scale, about the mean.
-    const double fastestAllowed = SoftBodySolver::fastestAllowed(energy);
+    const double fastestAllowed = SoftBodySolverImpl::fastestAllowed(energy);
     SoftBodyCache* cache = nullptr;
     const auto boundNextStep = [&](double fastestLeft) {
       if (!energy.boundForcesNextStep) return;
@@ -743,13 +758,13 @@ void SoftBodySolver::guardEnergy() {
   }
 }
 
-bool SoftBodySolver::separate(Tool& tool, bool lastResort) {
+bool SoftBodySolverImpl::separate(Tool& tool, bool lastResort) {
   const auto start = std::chrono::steady_clock::now();
-  const SeparationSettings& settings = tool.m_options.separation;
+  const SeparationSettings& settings = tool.state().options.separation;
   const Pose now = toPose(tool.body().getWorldTransform());
   const Pose before = stepStart(tool, now);
   // What is left is what the latest pass left; the moves add up over the passes.
-  SeparationCounts& counts = tool.m_lastWord.counts;
+  SeparationCounts& counts = tool.state().lastWord.counts;
   counts.nodesInside = 0;
   counts.facesPierced = 0;
   bool moved = false;
@@ -764,19 +779,19 @@ bool SoftBodySolver::separate(Tool& tool, bool lastResort) {
       counts.accumulate(piece);
     }
   }
-  tool.m_lastWord.microseconds +=
+  tool.state().lastWord.microseconds +=
       std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
   return moved;
 }
 
-SoftBodySolver::SoftBodyCache* SoftBodySolver::findCache(const btSoftBody& softBody) {
+SoftBodySolverImpl::SoftBodyCache* SoftBodySolverImpl::findCache(const btSoftBody& softBody) {
   for (SoftBodyCache& cache : m_caches) {
     if (cache.softBody == &softBody) return &cache;
   }
   return nullptr;
 }
 
-SoftBodySolver::SoftBodyCache& SoftBodySolver::cacheOf(const btSoftBody& softBody) {
+SoftBodySolverImpl::SoftBodyCache& SoftBodySolverImpl::cacheOf(const btSoftBody& softBody) {
   SoftBodyCache& cache = topologyOf(softBody);
   if (cache.stepSeen != m_step) {
     NodeSurvey survey = beginSurvey(cache, m_step);
@@ -789,7 +804,7 @@ SoftBodySolver::SoftBodyCache& SoftBodySolver::cacheOf(const btSoftBody& softBod
   return cache;
 }
 
-SoftBodySolver::SoftBodyCache& SoftBodySolver::topologyOf(const btSoftBody& softBody) {
+SoftBodySolverImpl::SoftBodyCache& SoftBodySolverImpl::topologyOf(const btSoftBody& softBody) {
   SoftBodyCache* found = findCache(softBody);
   if (found == nullptr) {
     m_caches.emplace_back();
@@ -843,7 +858,7 @@ SoftBodySolver::SoftBodyCache& SoftBodySolver::topologyOf(const btSoftBody& soft
 // One pass over the nodes serves the face reach, the body's box and the gathers' candidates: the
 // gathers of the step's pieces and passes then skip a body their reach misses, and read only the
 // candidates of one they meet.
-SoftBodySolver::NodeSurvey SoftBodySolver::beginSurvey(SoftBodyCache& cache, int step) {
+SoftBodySolverImpl::NodeSurvey SoftBodySolverImpl::beginSurvey(SoftBodyCache& cache, int step) {
   // The bound grows with each step's motion; after a step it did not see, it is measured anew.
   if (cache.stepSeen != step - 1) cache.measuredReach = -1;
   cache.stepSeen = step;
@@ -870,7 +885,7 @@ SoftBodySolver::NodeSurvey SoftBodySolver::beginSurvey(SoftBodyCache& cache, int
   return survey;
 }
 
-inline void SoftBodySolver::surveyNode(NodeSurvey& survey, SoftBodyCache& cache, int i, const btVector3& x,
+inline void SoftBodySolverImpl::surveyNode(NodeSurvey& survey, SoftBodyCache& cache, int i, const btVector3& x,
                                       const btVector3& q, bool pinned) {
   if (pinned) cache.pinned.push_back(static_cast<Index>(i));
   // In Bullet's scalar, without branches: this runs for every node of the body each step.
@@ -892,7 +907,7 @@ inline void SoftBodySolver::surveyNode(NodeSurvey& survey, SoftBodyCache& cache,
   }
 }
 
-void SoftBodySolver::finishSurvey(const NodeSurvey& survey, SoftBodyCache& cache, const btSoftBody& softBody) {
+void SoftBodySolverImpl::finishSurvey(const NodeSurvey& survey, SoftBodyCache& cache, const btSoftBody& softBody) {
   // A node that is not finite escapes the box; the gather then looks at every node, as it must.
   cache.boundsHold = survey.finite;
   cache.bounds = Aabb{toVec3(survey.lowest), toVec3(survey.highest)};
@@ -919,7 +934,7 @@ void SoftBodySolver::finishSurvey(const NodeSurvey& survey, SoftBodyCache& cache
   cache.candidatesHold = cache.candidatesHold && reach <= cache.candidateReach;
 }
 
-void SoftBodySolver::stopAtPinnedNodes(btRigidBody& tool, const ToolModel& piece, const Pose& pieceEnd,
+void SoftBodySolverImpl::stopAtPinnedNodes(btRigidBody& tool, const ToolModel& piece, const Pose& pieceEnd,
                                        Real inverseStep, const SoftBodyCache& cache, const btSoftBody& softBody,
                                        Index& nonFiniteWrites) {
   const detail::BodyVelocities before(&tool);
@@ -934,7 +949,7 @@ void SoftBodySolver::stopAtPinnedNodes(btRigidBody& tool, const ToolModel& piece
   before.check(nonFiniteWrites);
 }
 
-void SoftBodySolver::findBackings(const btSoftBody& softBody) {
+void SoftBodySolverImpl::findBackings(const btSoftBody& softBody) {
   if (m_backingOfNode.size() < static_cast<std::size_t>(softBody.m_nodes.size())) {
     m_backingOfNode.resize(static_cast<std::size_t>(softBody.m_nodes.size()), -1);
   }
@@ -950,7 +965,7 @@ void SoftBodySolver::findBackings(const btSoftBody& softBody) {
 // The pieces of any tool, other than piece p of tool, that end the step within a piece's width of
 // where piece p swept: near enough for the two to hold a soft face between them. One whose tool's
 // pose is not finite counts as near, its place unknown.
-void SoftBodySolver::findNearPieces(const Tool& tool, Index p, const PieceMotion& motion) {
+void SoftBodySolverImpl::findNearPieces(const Tool& tool, Index p, const PieceMotion& motion) {
   m_nearPieces.clear();
   const ToolModel& piece = tool.piece(p);
   const Aabb reach = sweptBounds(piece.bounds, motion).expanded(length(piece.bounds.extent()));
@@ -966,7 +981,7 @@ void SoftBodySolver::findNearPieces(const Tool& tool, Index p, const PieceMotion
   }
 }
 
-Index SoftBodySolver::patchVertexOf(const btSoftBody& softBody, Index node) {
+Index SoftBodySolverImpl::patchVertexOf(const btSoftBody& softBody, Index node) {
   Index& vertex = m_vertexOfNode[node];
   if (vertex == kInvalidIndex) {
     const btSoftBody::Node& soft = softBody.m_nodes[static_cast<int>(node)];
@@ -975,7 +990,7 @@ Index SoftBodySolver::patchVertexOf(const btSoftBody& softBody, Index node) {
   return vertex;
 }
 
-void SoftBodySolver::addPatchFace(const btSoftBody& softBody, const SoftBodyCache& cache, Index f) {
+void SoftBodySolverImpl::addPatchFace(const btSoftBody& softBody, const SoftBodyCache& cache, Index f) {
   if (m_faceInPatch[f] != 0) return;
   m_faceInPatch[f] = 1;
   m_patchFaces.push_back(f);
@@ -986,12 +1001,12 @@ void SoftBodySolver::addPatchFace(const btSoftBody& softBody, const SoftBodyCach
 
 // A move can carry a node's other faces into the tool, faces the gather had no reason to take:
 // those of every moved node join the patch, and the stage runs again, until none is missing.
-SeparationCounts SoftBodySolver::separateGrowingPatch(Tool& tool, const ToolModel& piece, const PieceMotion& motion,
+SeparationCounts SoftBodySolverImpl::separateGrowingPatch(Tool& tool, const ToolModel& piece, const PieceMotion& motion,
                                                      const btSoftBody& softBody, const SoftBodyCache& cache,
                                                      bool lastResort, const std::vector<NearPiece>& near) {
   SeparationCounts counts;
   for (int extension = 0;; ++extension) {
-    const SeparationSettings& settings = tool.m_options.separation;
+    const SeparationSettings& settings = tool.state().options.separation;
     const SeparationCounts run = lastResort ? carryMeetingFaces(piece, motion, settings, m_patch)
                                             : separateFromPiece(piece, motion, settings, m_patch, near);
     counts.nodesMoved += run.nodesMoved;
@@ -1025,7 +1040,7 @@ SeparationCounts SoftBodySolver::separateGrowingPatch(Tool& tool, const ToolMode
 // (carryCrossedFaces). A piece inside at the start (a body folded round it) is left to the stage.
 // The winding number visits every face of the body, and only for a turning piece near a closed
 // body.
-void SoftBodySolver::keepOutsideClosedBody(Tool& tool, const ToolModel& piece, const PieceMotion& motion,
+void SoftBodySolverImpl::keepOutsideClosedBody(Tool& tool, const ToolModel& piece, const PieceMotion& motion,
                                            const btSoftBody& softBody, const SoftBodyCache& cache,
                                            const std::vector<NearPiece>& near, SeparationCounts& counts) {
   const Vec3 centre = piece.bounds.center();
@@ -1049,16 +1064,16 @@ void SoftBodySolver::keepOutsideClosedBody(Tool& tool, const ToolModel& piece, c
     counts.facesMoved += bothReadings.facesMoved;
     if (!endsInside()) return;
   }
-  const SeparationCounts carried = carryCrossedFaces(piece, motion, tool.m_options.separation, m_patch);
+  const SeparationCounts carried = carryCrossedFaces(piece, motion, tool.state().options.separation, m_patch);
   counts.nodesMoved += carried.nodesMoved;
   counts.nodesInside = carried.nodesInside;
   counts.facesPierced = carried.facesPierced;
 }
 
-SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piece, const PieceMotion& motion,
+SeparationCounts SoftBodySolverImpl::separatePiece(Tool& tool, const ToolModel& piece, const PieceMotion& motion,
                                                btSoftBody& softBody, bool lastResort,
                                                const std::vector<NearPiece>& near) {
-  const Real clearance = tool.m_options.separation.clearance;
+  const Real clearance = tool.state().options.separation.clearance;
   const Aabb swept = sweptBounds(piece.bounds, motion).expanded(clearance);
   const int nodeCount = softBody.m_nodes.size();
 
@@ -1078,7 +1093,7 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
   if (cache.boundsHold && !grown.overlaps(cache.bounds)) {
     if (dynamicTool != nullptr) {
       stopAtPinnedNodes(*dynamicTool, piece, motion.end(), inverseStep, cache, softBody,
-                        tool.m_lastWord.nonFiniteWrites);
+                        tool.state().lastWord.nonFiniteWrites);
     }
     return {};
   }
@@ -1127,7 +1142,7 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
     for (Index f : m_patchFaces) m_faceInPatch[f] = 0;
     if (dynamicTool != nullptr) {
       stopAtPinnedNodes(*dynamicTool, piece, motion.end(), inverseStep, cache, softBody,
-                        tool.m_lastWord.nonFiniteWrites);
+                        tool.state().lastWord.nonFiniteWrites);
     }
     return {};
   }
@@ -1180,12 +1195,12 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
       if (node.m_im > 0) {
         // The node's change of momentum, whose opposite the tool takes, over the step.
         const Vec3 force = (velocity - separated) * (inverseStep / Real(node.m_im));
-        tool.m_holdWrench.force += force;
-        tool.m_holdWrench.torque += cross(toolPoint, force);
+        tool.state().holdWrench.force += force;
+        tool.state().holdWrench.torque += cross(toolPoint, force);
       }
     }
-    detail::checkWrite(positionBefore, node.m_x, tool.m_lastWord.nonFiniteWrites);
-    detail::checkWrite(velocityBefore, node.m_v, tool.m_lastWord.nonFiniteWrites);
+    detail::checkWrite(positionBefore, node.m_x, tool.state().lastWord.nonFiniteWrites);
+    detail::checkWrite(velocityBefore, node.m_v, tool.state().lastWord.nonFiniteWrites);
     movedAny = true;
     if (dynamicTool != nullptr && node.m_im > 0) {
       const int backing = m_backingOfNode[id];
@@ -1194,9 +1209,9 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
     }
   }
   if (dynamicTool != nullptr) {
-    toolBefore.check(tool.m_lastWord.nonFiniteWrites);
+    toolBefore.check(tool.state().lastWord.nonFiniteWrites);
     stopAtPinnedNodes(*dynamicTool, piece, motion.end(), inverseStep, cache, softBody,
-                      tool.m_lastWord.nonFiniteWrites);
+                      tool.state().lastWord.nonFiniteWrites);
     for (int c = 0; c < softBody.m_rcontacts.size(); ++c) {
       m_backingOfNode[static_cast<Index>(softBody.m_rcontacts[c].m_node - &softBody.m_nodes[0])] = -1;
     }
@@ -1211,4 +1226,5 @@ SeparationCounts SoftBodySolver::separatePiece(Tool& tool, const ToolModel& piec
   return counts;
 }
 
+}  // namespace detail
 }  // namespace thintool

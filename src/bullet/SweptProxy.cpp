@@ -3,6 +3,7 @@
 #include "SweptProxy.h"
 
 #include "CollisionPass.h"
+#include "ToolState.h"
 
 #include <thintool/bullet/Convert.h>
 #include <thintool/bullet/Tool.h>
@@ -22,7 +23,7 @@ SweptProxy::SweptProxy(Tool& tool, std::unordered_map<const btCollisionObject*, 
 
 SweptProxy::~SweptProxy() {
   m_registry.erase(this);
-  if (m_tool.m_proxy == this) m_tool.m_proxy = nullptr;
+  if (m_tool.state().proxy == this) m_tool.state().proxy = nullptr;
 }
 
 bool SweptProxy::checkCollideWithOverride(const btCollisionObject* other) const {
@@ -32,13 +33,13 @@ bool SweptProxy::checkCollideWithOverride(const btCollisionObject* other) const 
 void SweptProxy::Shape::getAabb(const btTransform& /*transform*/, btVector3& outMin, btVector3& outMax) const {
   // Bullet updates the boxes once a step, after predicting the soft bodies (which refits their
   // face trees) and before dispatching the pairs.
-  m_tool.trackMotion();
-  if (m_tool.m_pass != nullptr) {
-    m_tool.m_pass->begin();
+  m_tool.state().trackMotion();
+  if (m_tool.state().pass != nullptr) {
+    m_tool.state().pass->begin();
   }
   Pose before;
   Pose now;
-  m_tool.bodyMotion(before, now);
+  m_tool.state().bodyMotion(before, now);
   Aabb box;
   for (Index piece = 0; piece < m_tool.pieceCount(); ++piece) {
     const Aabb& local = m_tool.piece(piece).bounds;

@@ -2,6 +2,7 @@
 // Copyright (c) 2026 The ThinTool developers
 #include "PairState.h"
 #include "SweptProxy.h"
+#include "ToolState.h"
 
 #include <thintool/bullet/Convert.h>
 #include <thintool/bullet/Tool.h>
@@ -19,72 +20,100 @@ PairState::PairState() = default;
 PairState::~PairState() = default;
 }  // namespace detail
 
-Tool::Tool(btCollisionObject& body, const ToolOptions& options, std::vector<ToolModel> pieces,
-           std::vector<Pose> pieceTransforms)
-    : m_body(body), m_options(options), m_pieces(std::move(pieces)), m_pieceTransforms(std::move(pieceTransforms)) {
+namespace detail {
+
+ToolState::ToolState(btCollisionObject& toolBody, const ToolOptions& toolOptions, std::vector<ToolModel> toolPieces,
+                     std::vector<Pose> toolPieceTransforms)
+    : body(toolBody),
+      options(toolOptions),
+      pieces(std::move(toolPieces)),
+      pieceTransforms(std::move(toolPieceTransforms)) {
   Index largest = 0;
-  for (const ToolModel& piece : m_pieces) {
+  for (const ToolModel& piece : pieces) {
     largest = std::max(largest, piece.nodeCount());
   }
-  m_report.contacts.reserve(largest);
+  report.contacts.reserve(largest);
 }
 
-Tool::~Tool() { delete m_proxy; }
+ToolState::~ToolState() { delete proxy; }
+
+}  // namespace detail
+
+Tool::Tool(btCollisionObject& body, const ToolOptions& options, std::vector<ToolModel> pieces,
+           std::vector<Pose> pieceTransforms)
+    : m_state(std::make_unique<detail::ToolState>(body, options, std::move(pieces), std::move(pieceTransforms))) {}
+
+Tool::~Tool() = default;
+
+const std::string& Tool::name() const { return m_state->options.name; }
+btCollisionObject& Tool::body() const { return m_state->body; }
+const ToolOptions& Tool::options() const { return m_state->options; }
+Index Tool::pieceCount() const { return static_cast<Index>(m_state->pieces.size()); }
+const ToolModel& Tool::piece(Index i) const { return m_state->pieces[i]; }
+const Pose& Tool::pieceTransform(Index i) const { return m_state->pieceTransforms[i]; }
 
 void Tool::resetMotion() {
-  m_jumpNext = true;
-  m_separationJump = true;
+  m_state->jumpNext = true;
+  m_state->separationJump = true;
 }
 
-void Tool::trackMotion() {
-  const Pose now = toPose(m_body.getWorldTransform());
-  const bool jumped = m_jumpNext;
-  m_poseBefore = m_motionTracked && !jumped ? m_poseNow : now;
-  m_poseNow = now;
-  m_motionTracked = true;
-  m_jumpNext = false;
+namespace detail {
+
+void ToolState::trackMotion() {
+  const Pose now = toPose(body.getWorldTransform());
+  const bool jumped = jumpNext;
+  poseBefore = motionTracked && !jumped ? poseNow : now;
+  poseNow = now;
+  motionTracked = true;
+  jumpNext = false;
   // A dynamic tool set down by hand moves on from there in the same step: Bullet integrates it
   // after the collision pass, and the last word sweeps that motion from the pose set down.
-  if (m_separationJump && dynamicBody() != nullptr && isFinite(now)) {
-    m_separatedPose = now;
-    m_hasSeparatedPose = true;
-    m_separationJump = false;
+  if (separationJump && dynamicBody() != nullptr && isFinite(now)) {
+    separatedPose = now;
+    hasSeparatedPose = true;
+    separationJump = false;
   }
 }
 
-btRigidBody* Tool::rigidBody() const { return btRigidBody::upcast(&m_body); }
-
-btRigidBody* Tool::dynamicBody() const {
-  btRigidBody* rigid = rigidBody();
+btRigidBody* ToolState::dynamicBody() const {
+  btRigidBody* rigid = btRigidBody::upcast(&body);
   return rigid != nullptr && !rigid->isStaticOrKinematicObject() ? rigid : nullptr;
 }
 
-void Tool::bodyMotion(Pose& outPrevious, Pose& outCurrent) const {
+void ToolState::bodyMotion(Pose& outPrevious, Pose& outCurrent) const {
   if (dynamicBody() != nullptr) {
-    outPrevious = toPose(m_body.getWorldTransform());
-    outCurrent = toPose(m_body.getInterpolationWorldTransform());
+    outPrevious = toPose(body.getWorldTransform());
+    outCurrent = toPose(body.getInterpolationWorldTransform());
     return;
   }
-  outCurrent = toPose(m_body.getWorldTransform());
-  outPrevious = m_motionTracked ? m_poseBefore : outCurrent;
+  outCurrent = toPose(body.getWorldTransform());
+  outPrevious = motionTracked ? poseBefore : outCurrent;
 }
+
+}  // namespace detail
+
+btRigidBody* Tool::rigidBody() const { return btRigidBody::upcast(&m_state->body); }
+
+btRigidBody* Tool::dynamicBody() const { return m_state->dynamicBody(); }
 
 Index Tool::nodeCount() const {
   Index count = 0;
-  for (const ToolModel& piece : m_pieces) {
+  for (const ToolModel& piece : m_state->pieces) {
     count += piece.nodeCount();
   }
   return count;
 }
 
-detail::PairState& Tool::pairState(btSoftBody& softBody, Index piece) {
-  for (auto& state : m_pairs) {
+namespace detail {
+
+PairState& ToolState::pairState(btSoftBody& softBody, Index piece) {
+  for (auto& state : pairs) {
     if (state->softBody == &softBody && state->piece == piece) {
       return *state;
     }
   }
-  m_pairs.push_back(std::make_unique<detail::PairState>());
-  detail::PairState& state = *m_pairs.back();
+  pairs.push_back(std::make_unique<PairState>());
+  PairState& state = *pairs.back();
   state.softBody = &softBody;
   state.piece = piece;
   return state;
@@ -106,8 +135,8 @@ void captureInto(RestShape& shape, const btSoftBody& softBody) {
 
 }  // namespace
 
-RestShape& Tool::restShape(const btSoftBody& softBody) {
-  for (auto& rest : m_restShapes) {
+RestShape& ToolState::restShape(const btSoftBody& softBody) {
+  for (auto& rest : restShapes) {
     if (rest->softBody == &softBody) {
       if (rest->shape.nodeCount() != static_cast<Index>(softBody.m_nodes.size())) {
         captureInto(rest->shape, softBody);
@@ -115,43 +144,46 @@ RestShape& Tool::restShape(const btSoftBody& softBody) {
       return rest->shape;
     }
   }
-  m_restShapes.push_back(std::make_unique<SoftRest>());
-  m_restShapes.back()->softBody = &softBody;
-  captureInto(m_restShapes.back()->shape, softBody);
-  return m_restShapes.back()->shape;
+  restShapes.push_back(std::make_unique<SoftRest>());
+  restShapes.back()->softBody = &softBody;
+  captureInto(restShapes.back()->shape, softBody);
+  return restShapes.back()->shape;
 }
+
+}  // namespace detail
 
 void Tool::captureRestShape(const btSoftBody& softBody) {
   // restShape() captures only a body it has not seen; capture this one again whatever it had.
-  captureInto(restShape(softBody), softBody);
+  detail::captureInto(m_state->restShape(softBody), softBody);
 }
 
 const ToolStepReport& Tool::report() {
-  m_report.contacts.clear();
-  m_report.excludedNodes.clear();
-  m_report.diagnostics = ToolDiagnostics{};
-  m_report.wrench = Wrench{};
-  ToolForce& contactForce = m_report.contactForce;
+  detail::ToolState& t = *m_state;
+  t.report.contacts.clear();
+  t.report.excludedNodes.clear();
+  t.report.diagnostics = ToolDiagnostics{};
+  t.report.wrench = Wrench{};
+  ToolForce& contactForce = t.report.contactForce;
   contactForce.force = Vec3{};
   contactForce.torque = Vec3{};
   contactForce.faces.clear();
-  ToolDiagnostics& diagnostics = m_report.diagnostics;
-  diagnostics.lastWord = m_lastWord;
-  diagnostics.nonFiniteWrites = m_lastWord.nonFiniteWrites;
+  ToolDiagnostics& diagnostics = t.report.diagnostics;
+  diagnostics.lastWord = t.lastWord;
+  diagnostics.nonFiniteWrites = t.lastWord.nonFiniteWrites;
   // A pose that is not finite was skipped by the step (the pairs held the tissue at the last good
   // one): report about that one too, so that no NaN reaches the report.
-  Pose bodyPose = toPose(m_body.getWorldTransform());
+  Pose bodyPose = toPose(t.body.getWorldTransform());
   if (isFinite(bodyPose)) {
-    m_lastFiniteBodyPose = bodyPose;
+    t.lastFiniteBodyPose = bodyPose;
   } else {
-    bodyPose = m_lastFiniteBodyPose;
+    bodyPose = t.lastFiniteBodyPose;
   }
-  contactForce.torquePoint = bodyPose.apply(m_options.force.torquePoint);
-  diagnostics.lastWord.holdNodesShared = m_holdNodesShared;
-  m_report.holdWrench.force = m_holdWrench.force;
-  m_report.holdWrench.torque = m_holdWrench.torque - cross(bodyPose.translation, m_holdWrench.force);
+  contactForce.torquePoint = bodyPose.apply(t.options.force.torquePoint);
+  diagnostics.lastWord.holdNodesShared = t.holdNodesShared;
+  t.report.holdWrench.force = t.holdWrench.force;
+  t.report.holdWrench.torque = t.holdWrench.torque - cross(bodyPose.translation, t.holdWrench.force);
 
-  for (const auto& statePointer : m_pairs) {
+  for (const auto& statePointer : t.pairs) {
     const detail::PairState& state = *statePointer;
     if (!state.live) {
       continue;
@@ -171,15 +203,15 @@ const ToolStepReport& Tool::report() {
     diagnostics.nonFiniteWrites += state.nonFiniteWrites;
     for (int check = 1; check <= 2; ++check) {
       for (Index node : state.detection.excludedNodes[check - 1]) {
-        m_report.excludedNodes.push_back({state.softBody, state.piece, node, check});
+        t.report.excludedNodes.push_back({state.softBody, state.piece, node, check});
       }
     }
 
     // The piece's wrench is about the piece's origin; move the torque to the body's origin.
-    const Pose piecePose = bodyPose * m_pieceTransforms[state.piece];
+    const Pose piecePose = bodyPose * t.pieceTransforms[state.piece];
     const Wrench& wrench = state.response.wrench;
-    m_report.wrench.force += wrench.force;
-    m_report.wrench.torque +=
+    t.report.wrench.force += wrench.force;
+    t.report.wrench.torque +=
         wrench.torque + cross(piecePose.translation - bodyPose.translation, wrench.force);
 
     for (const FaceForce& face : state.force.faces) {
@@ -189,10 +221,10 @@ const ToolStepReport& Tool::report() {
     }
 
     // What the soft solver left inside the tool, measured at the positions the step ended with.
-    const ToolModel& model = m_pieces[state.piece];
+    const ToolModel& model = t.pieces[state.piece];
     const btSoftBody& softBody = *state.softBody;
     for (const Contact& contact : state.detection.contacts) {
-      m_report.contacts.push_back({&softBody, state.piece, contact});
+      t.report.contacts.push_back({&softBody, state.piece, contact});
       if (contact.softFace >= static_cast<Index>(softBody.m_faces.size())) {
         continue;
       }
@@ -209,7 +241,7 @@ const ToolStepReport& Tool::report() {
       }
     }
   }
-  return m_report;
+  return t.report;
 }
 
 }  // namespace thintool

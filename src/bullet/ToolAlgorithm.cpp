@@ -6,6 +6,7 @@
 #include "PairState.h"
 #include "SoftSurface.h"
 #include "ToolReaction.h"
+#include "ToolState.h"
 #include "WriteCheck.h"
 
 #include <thintool/bullet/Convert.h>
@@ -204,7 +205,7 @@ ToolAlgorithm::~ToolAlgorithm() {
     m_state->separate();
   } else if (m_mode == Mode::WholeTool) {
     for (Index piece = 0; piece < m_tool.pieceCount(); ++piece) {
-      m_tool.pairState(*m_softBody, piece).separate();
+      m_tool.state().pairState(*m_softBody, piece).separate();
     }
   }
 }
@@ -246,16 +247,16 @@ void ToolAlgorithm::processCollision(const btCollisionObjectWrapper* body0, cons
   if (m_mode == Mode::OnePiece) {
     const Pose pose = toPose(toolWrap->getWorldTransform());
     PairState& state = *m_state;
-    PieceStep step{state, softBody, toolBody, m_tool.m_pieces[state.piece],
+    PieceStep step{state, softBody, toolBody, m_tool.state().pieces[state.piece],
                    state.hasPreviousPose ? state.previousPose : pose, pose};
     processPiece(step, toolWrap);
     return;
   }
   Pose bodyBefore;
   Pose bodyNow;
-  m_tool.bodyMotion(bodyBefore, bodyNow);
+  m_tool.state().bodyMotion(bodyBefore, bodyNow);
   for (Index piece = 0; piece < m_tool.pieceCount(); ++piece) {
-    PieceStep step{m_tool.pairState(softBody, piece), softBody, toolBody, m_tool.m_pieces[piece],
+    PieceStep step{m_tool.state().pairState(softBody, piece), softBody, toolBody, m_tool.state().pieces[piece],
                    bodyBefore * m_tool.pieceTransform(piece), bodyNow * m_tool.pieceTransform(piece)};
     step.swept = true;
     processPiece(step, toolWrap);
@@ -297,7 +298,7 @@ void ToolAlgorithm::processPiece(PieceStep& step, const btCollisionObjectWrapper
 void ToolAlgorithm::processValidPiece(PieceStep& step) {
   step.start = Clock::now();
   step.timeStep = step.softBody.m_sst.sdt;
-  step.skinGrowthSpeed = m_tool.m_options.skinGrowthSpeed;
+  step.skinGrowthSpeed = m_tool.state().options.skinGrowthSpeed;
   prepareBuffers(step);
   gather(step);
   detect(step);
@@ -317,9 +318,9 @@ void ToolAlgorithm::processValidPiece(PieceStep& step) {
 void ToolAlgorithm::prepareBuffers(PieceStep& step) {
   PairState& state = step.state;
   btSoftBody& softBody = step.softBody;
-  const bool scans = step.swept && m_tool.m_options.bullet.scanFaces;
-  if (!scans && ensureFaceTree(softBody) && m_tool.m_pass != nullptr) {
-    m_tool.m_pass->recordUnfittedTree();
+  const bool scans = step.swept && m_tool.state().options.bullet.scanFaces;
+  if (!scans && ensureFaceTree(softBody) && m_tool.state().pass != nullptr) {
+    m_tool.state().pass->recordUnfittedTree();
   }
   if (state.facesSeen == softBody.m_faces.size()) {
     return;
@@ -345,7 +346,7 @@ void ToolAlgorithm::prepareBuffers(PieceStep& step) {
 
 // The soft faces near the piece into the pair's patch, and the skin the pair keeps this step.
 void ToolAlgorithm::gather(PieceStep& step) {
-  const ToolOptions& options = m_tool.m_options;
+  const ToolOptions& options = m_tool.state().options;
   PairState& state = step.state;
   btSoftBody& softBody = step.softBody;
   step.fullSkin = options.skin.value_or(Real(softBody.getCollisionShape()->getMargin()));
@@ -363,11 +364,11 @@ void ToolAlgorithm::gather(PieceStep& step) {
   // scanFaces), every face's motion is read, where no tree exists. Walked, the tree is searched
   // first twice as far out as the soft nodes near the tool moved last step (the solver's pull
   // adds to the motion), or as the soft body moved as a whole this step, if farther.
-  if (step.swept && m_tool.m_options.bullet.scanFaces && softBody.m_fdbvt.empty()) {
+  if (step.swept && m_tool.state().options.bullet.scanFaces && softBody.m_fdbvt.empty()) {
     step.facesWalked = gatherPatchByScan(softBody, reach.expanded(step.fullSkin), state);
   } else {
     const Real motionBound = step.swept ? std::max(2 * state.softReach, softBodyMotion(softBody, state)) : 0;
-    const CollisionPass* pass = m_tool.m_pass;
+    const CollisionPass* pass = m_tool.state().pass;
     const Real nodeTravel = pass != nullptr ? pass->nodeTravel() : std::numeric_limits<Real>::infinity();
     step.facesWalked = gatherPatch(softBody, reach.expanded(step.fullSkin), motionBound,
                                    faceLeafSlack(softBody, nodeTravel), step.swept, state);
@@ -388,12 +389,12 @@ void ToolAlgorithm::detect(PieceStep& step) {
       patch.checkedPositions[v] =
           state.sweptNodes.stampedLastStep(id) ? state.lastPositions[id] : patch.previousPositions[v];
     }
-    detectSwept(step.context(), patch, state.sides, m_tool.m_sweptWorkspace,
+    detectSwept(step.context(), patch, state.sides, m_tool.state().sweptWorkspace,
                 state.detection);
   } else {
     const SoftBodyRayQuery reverseQuery(step.softBody, state.traversalStack);
     DetectionInput input;
-    input.filters = m_tool.m_options.filters;
+    input.filters = m_tool.state().options.filters;
     input.reverseRayLength = input.filters.reverseRayLength.value_or(
         length(toVec3(step.softBody.m_bounds[1] - step.softBody.m_bounds[0])));
     input.reverseQuery = &reverseQuery;
@@ -406,9 +407,9 @@ void ToolAlgorithm::detect(PieceStep& step) {
 // The corrections for the contacts; the pose becomes the start of the pair's next step.
 void ToolAlgorithm::respond(PieceStep& step) {
   PairState& state = step.state;
-  ResponseSettings response = m_tool.m_options.response;
+  ResponseSettings response = m_tool.state().options.response;
   response.guardNodes = response.guardNodes && !step.swept;  // swept detection tests every node itself
-  if (response.friction.enabled && m_tool.m_options.bullet.frictionFromBodies) {
+  if (response.friction.enabled && m_tool.state().options.bullet.frictionFromBodies) {
     response.friction.staticCoefficient = pairFriction(step.softBody, step.toolBody);
     response.friction.kineticCoefficient = response.friction.staticCoefficient;
   }
@@ -440,7 +441,7 @@ void ToolAlgorithm::rememberSweep(PieceStep& step) {
 
 // Into Bullet: the solver's holds, the moves, a dynamic tool's reaction, and the force model.
 void ToolAlgorithm::write(PieceStep& step) {
-  const ToolOptions& options = m_tool.m_options;
+  const ToolOptions& options = m_tool.state().options;
   PairState& state = step.state;
   btRigidBody* dynamicBody = m_tool.dynamicBody();
   const bool forceReacts = options.force.enabled && options.force.applyToDynamicTool;
@@ -457,8 +458,8 @@ void ToolAlgorithm::write(PieceStep& step) {
   }
   const Real moved =
       applyResponse(state, step.softBody, forceReacts ? nullptr : dynamicBody, step.timeStep);
-  if (m_tool.m_pass != nullptr) {
-    m_tool.m_pass->recordMoves(moved);
+  if (m_tool.state().pass != nullptr) {
+    m_tool.state().pass->recordMoves(moved);
   }
   if (options.force.enabled) {
     computeForces(step, forceReacts ? dynamicBody : nullptr);
@@ -486,19 +487,19 @@ void ToolAlgorithm::stopAtPinnedNodes(btRigidBody& tool, const btSoftBody& softB
       if (!state.stopsAtPinned || state.softBody != &softBody) return;
       const SoftPatch& patch = state.patch;
       for (Index v = 0; v < patch.vertexCount(); ++v) {
-        if (!(patch.inverseMasses[v] > 0)) visit(m_tool.m_pieces[state.piece], state.pinnedStopPose, patch.positions[v]);
+        if (!(patch.inverseMasses[v] > 0)) visit(m_tool.state().pieces[state.piece], state.pinnedStopPose, patch.positions[v]);
       }
     };
     if (single != nullptr) {
       visitPair(*single);
       return;
     }
-    for (const auto& pair : m_tool.m_pairs) visitPair(*pair);
+    for (const auto& pair : m_tool.state().pairs) visitPair(*pair);
   };
   const BodyVelocities before(&tool);
   stopShortOfPinnedNodes(tool, forEachPinned, Real(1) / Real(timeStep), true);
   // Counted with the soft body's first pair, whichever pieces stopped the tool.
-  for (const auto& pair : m_tool.m_pairs) {
+  for (const auto& pair : m_tool.state().pairs) {
     if (pair->softBody == &softBody) {
       before.check(pair->nonFiniteWrites);
       break;
@@ -509,8 +510,8 @@ void ToolAlgorithm::stopAtPinnedNodes(btRigidBody& tool, const btSoftBody& softB
 void ToolAlgorithm::computeForces(PieceStep& step, btRigidBody* reactingBody) {
   PairState& state = step.state;
   btSoftBody& softBody = step.softBody;
-  const ForceSettings& settings = m_tool.m_options.force;
-  const RestShape& rest = m_tool.restShape(softBody);
+  const ForceSettings& settings = m_tool.state().options.force;
+  const RestShape& rest = m_tool.state().restShape(softBody);
   if (settings.measure == DeformationMeasure::Indentation) {
     state.anchorPositions.clear();
     for (Index node : rest.anchors()) {

@@ -2,6 +2,8 @@
 // Copyright (c) 2026 The ThinTool developers
 #include <thintool/bullet/ToolOptions.h>
 
+#include <thintool/response/Separation.h>
+
 #include <cmath>
 #include <sstream>
 

@@ -34,14 +34,14 @@ void PairHistory::reset() {
   m_blockedList.clear();
 }
 
-void PairHistory::record(const ToolModel& model, const std::vector<Contact>& contacts) {
+void PairHistory::record(const ToolModel& model, const std::vector<PatchContact>& contacts) {
   if (m_blocked.size() != model.nodeCount()) {
     m_blocked.assign(model.nodeCount(), 0);
     m_blockedList.clear();
     m_blockedList.reserve(model.nodeCount());
   }
   reset();
-  for (const Contact& contact : contacts) {
+  for (const PatchContact& contact : contacts) {
     const Index node = contact.toolNode;
     for (Index k = model.oppositeBegin[node]; k < model.oppositeBegin[node + 1]; ++k) {
       const Index opposite = model.opposites[k];
@@ -71,7 +71,7 @@ void detectContacts(const StepContext& step, const SoftPatch& patch, const Detec
   const Real skin = step.skin;
   const SoftSurfaceRayQuery* reverseQuery = input.reverseQuery;
   DetectionWorkspace& work = out.workspace;
-  std::vector<Contact>& outContacts = out.contacts;
+  std::vector<PatchContact>& outContacts = out.contacts;
   DetectionCounters& outCounters = out.counters;
   outContacts.clear();
   outCounters = DetectionCounters{};
@@ -165,7 +165,7 @@ void detectContacts(const StepContext& step, const SoftPatch& patch, const Detec
         }
       }
     }
-    Contact contact;
+    PatchContact contact;
     contact.kind = ContactKind::ToolRay;
     contact.toolNode = node;
     contact.patchFace = face;

@@ -54,7 +54,7 @@ struct Sweep {
   SideMemory& memory;
   const std::vector<Vec3>& start;
   const std::vector<Vec3>& end;
-  std::vector<Contact>& out;
+  std::vector<PatchContact>& out;
   DetectionCounters& counters;
 
   // A contact asking the soft point, made of up to three patch vertices with the given weights,
@@ -62,7 +62,7 @@ struct Sweep {
   // direction (tool frame), the skin away.
   void emit(ContactKind kind, const Index* vertices, Index count, const Vec3& weights, const Vec3& toolPoint,
             const Vec3& direction, Real timeOfImpact, Index toolNode, Index toolFeature, Index face) {
-    Contact contact;
+    PatchContact contact;
     contact.kind = kind;
     contact.normal = pose.applyToDirection(direction);
     contact.offset = -(dot(contact.normal, pose.apply(toolPoint)) + skin);
@@ -263,7 +263,7 @@ void detectSwept(const StepContext& step, const SoftPatch& patch, SideMemory& me
   const Pose& previousPose = step.previousPose;
   const Pose& pose = step.pose;
   const Real skin = step.skin;
-  std::vector<Contact>& outContacts = out.contacts;
+  std::vector<PatchContact>& outContacts = out.contacts;
   DetectionCounters& outCounters = out.counters;
   out.excludedNodes[0].clear();
   out.excludedNodes[1].clear();

@@ -114,7 +114,7 @@ void ForceHistory::resize(Index faceCount) {
 
 void ForceHistory::reset() { m_inContact.forget(); }
 
-void computeContactForces(const StepContext& step, const SoftPatch& patch, const std::vector<Contact>& contacts,
+void computeContactForces(const StepContext& step, const SoftPatch& patch, const std::vector<PatchContact>& contacts,
                           const ForceInput& input, ForceResult& out) {
   const ForceSettings& settings = input.settings;
   const RestShape& rest = input.rest;
@@ -135,7 +135,7 @@ void computeContactForces(const StepContext& step, const SoftPatch& patch, const
   // are the directions the tool pushes it along.
   std::vector<Vec3>& vertexNormal = history.m_vertexNormal;
   vertexNormal.assign(patch.vertexCount(), Vec3{});
-  for (const Contact& contact : contacts) {
+  for (const PatchContact& contact : contacts) {
     for (Index k = 0; k < contact.softNodeCount; ++k) {
       const Index v = contact.patchVertices[k];
       if (v < patch.vertexCount() && isFinite(contact.normal)) {

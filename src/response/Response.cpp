@@ -63,7 +63,7 @@ Index planeMovedThrough(const ToolModel& model, const Vec3& start, const Vec3& e
 // and the point hardly moves, so that every further contact and sweep would push the node again.
 // Nodes at that bound move their bound and the others share what is left; the point may then move
 // less than depth, and the last word answers for the rest. False when no node can move.
-bool shareContactMove(const Contact& contact, const std::vector<Real>& inverseMasses, Real depth,
+bool shareContactMove(const PatchContact& contact, const std::vector<Real>& inverseMasses, Real depth,
                       const std::array<Real, 3>& room, std::array<Real, 3>& outShares) {
   std::array<bool, 3> atBound{};
   bool pinned = false;
@@ -139,7 +139,7 @@ void applyFriction(const FrictionSettings& friction, const Pose& toolPose, const
 struct ResponseProjection {
   const StepContext& step;
   const SoftPatch& patch;
-  const std::vector<Contact>& contacts;
+  const std::vector<PatchContact>& contacts;
   ResponseWorkspace& work;
   std::vector<NodeCorrection>& corrections;
 
@@ -157,7 +157,7 @@ struct ResponseProjection {
     return std::min(step.skin, std::max(start, Real(0)) + step.skinGrowthSpeed * step.dt);
   }
   // Signed distance in front of the contact's plane, moved back to the skin the point keeps.
-  Real distanceOf(const Contact& contact, const Vec3& position) const {
+  Real distanceOf(const PatchContact& contact, const Vec3& position) const {
     return dot(contact.normal, position) + contact.offset + work.m_contactSkinLeft[&contact - contacts.data()];
   }
 
@@ -183,7 +183,7 @@ void ResponseProjection::begin() {
   work.m_largestShare.clear();
   work.m_entryDepth.clear();
   work.m_contactSkinLeft.clear();
-  for (const Contact& contact : contacts) {
+  for (const PatchContact& contact : contacts) {
     // A face's or an edge's contact point is wherever the tool meets it this step, not a point
     // of the soft body that has a place at the start of the step: it keeps the whole skin.
     const bool node = contact.kind == ContactKind::SoftNode;
@@ -208,7 +208,7 @@ NodeCorrection& ResponseProjection::slotOf(Index vertex) {
 
 // The paper's eq. (2) as the displacement it causes within the step (see the file's comment).
 void ResponseProjection::pushByPaperForce(Real stiffness) {
-  for (const Contact& contact : contacts) {
+  for (const PatchContact& contact : contacts) {
     const Real pushForce = stiffness * (contact.depth + step.skin);
     for (Index k = 0; k < contact.softNodeCount; ++k) {
       const Index vertex = contact.patchVertices[k];
@@ -227,7 +227,7 @@ void ResponseProjection::pushByPaperForce(Real stiffness) {
 // contact of the node itself, or the entry plane of a ray that hit one of its faces. Never across
 // the tool, never out of its far side. moveChosenNodesOut moves them.
 void ResponseProjection::leaveThroughEntryPlanes() {
-  for (const Contact& contact : contacts) {
+  for (const PatchContact& contact : contacts) {
     if (contact.kind != ContactKind::ToolRay && contact.kind != ContactKind::SoftNode) {
       continue;
     }
@@ -284,7 +284,7 @@ void ResponseProjection::projectContactPoints() {
   constexpr Real kSettled = 1e-6;  // m
   for (int sweep = 0; sweep < kSweeps; ++sweep) {
     Real worst = 0;
-    for (const Contact& contact : contacts) {
+    for (const PatchContact& contact : contacts) {
       Vec3 point;
       std::array<Real, 3> room{};
       for (Index k = 0; k < contact.softNodeCount; ++k) {
@@ -388,7 +388,7 @@ Index ResponseProjection::finish(Wrench& outWrench) {
   return dropped;
 }
 
-void computeResponse(const StepContext& step, const SoftPatch& patch, const std::vector<Contact>& contacts,
+void computeResponse(const StepContext& step, const SoftPatch& patch, const std::vector<PatchContact>& contacts,
                      const ResponseSettings& settings, ResponseResult& out) {
   THINTOOL_ASSERT(patch.consistent());
   out.corrections.clear();

@@ -46,10 +46,10 @@ class Fig4Sequence : public ::testing::Test {
     input.reverseQuery = &m_query;
     Step step;
     detectContacts({m_model, pose, pose, kDt, kSkin}, m_patch, input, m_history, m_result);
-    const std::vector<Contact>& contacts = m_result.contacts;
+    const std::vector<PatchContact>& contacts = m_result.contacts;
     step.counters = m_result.counters;
     step.colliding = static_cast<Index>(contacts.size());
-    for (const Contact& c : contacts) {
+    for (const PatchContact& c : contacts) {
       step.pushingUp += c.normal.y > 0.5 ? 1 : 0;
       step.pushingDown += c.normal.y < -0.5 ? 1 : 0;
       EXPECT_LE(c.depth, 2 * kHalfThickness + 1e-12);
@@ -153,10 +153,10 @@ TEST(Detection, ContactsReportWhereTheRayMetTheFace) {
   PairHistory history;
   DetectionResult result;
   detectContacts({model, pose, pose, 0.01, 0}, patch, input, history, result);
-  const std::vector<Contact>& contacts = result.contacts;
+  const std::vector<PatchContact>& contacts = result.contacts;
   const DetectionCounters& counters = result.counters;
   ASSERT_EQ(contacts.size(), 4u);  // the 2 × 2 grid of the underside
-  for (const Contact& c : contacts) {
+  for (const PatchContact& c : contacts) {
     EXPECT_EQ(c.softFace, 7u);
     EXPECT_NEAR(c.depth, 0.003, 1e-12);
     EXPECT_NEAR(c.normal.y, -1, 1e-12);
@@ -181,10 +181,10 @@ TEST(Detection, NonFiniteSoftFacesAreSkippedAndCounted) {
   DetectionInput input;
   input.reverseQuery = &query;
   detectContacts({model, pose, pose, 0.01, 0}, patch, input, history, result);
-  const std::vector<Contact>& contacts = result.contacts;
+  const std::vector<PatchContact>& contacts = result.contacts;
   const DetectionCounters& counters = result.counters;
   EXPECT_EQ(counters.skippedFaces, 5u);  // an icosahedron vertex has five faces
-  for (const Contact& c : contacts) {
+  for (const PatchContact& c : contacts) {
     EXPECT_TRUE(isFinite(c.point));
   }
 }

@@ -26,7 +26,7 @@ class OneFace : public ::testing::Test {
 
   // One step of the face from start to end, the solver having moved it from checked to start since
   // detection last saw it.
-  std::vector<Contact> step(const std::vector<Vec3>& checked, const std::vector<Vec3>& start,
+  std::vector<PatchContact> step(const std::vector<Vec3>& checked, const std::vector<Vec3>& start,
                             const std::vector<Vec3>& end) {
     SoftPatch patch;
     patch.positions = end;
@@ -43,9 +43,9 @@ class OneFace : public ::testing::Test {
   }
 
   // Whether the contacts hold the face beyond the needle's end, on the +x side, the skin away.
-  static bool holdBeyondTheEnd(const std::vector<Contact>& contacts) {
+  static bool holdBeyondTheEnd(const std::vector<PatchContact>& contacts) {
     bool any = false;
-    for (const Contact& contact : contacts) {
+    for (const PatchContact& contact : contacts) {
       EXPECT_EQ(contact.kind, ContactKind::ToolPoint);
       EXPECT_GT(contact.normal.x, 0.99);
       EXPECT_NEAR(-contact.offset / contact.normal.x, kHalfLength + kSkin, 1e-9);
@@ -88,7 +88,7 @@ TEST_F(OneFace, ANodeTheSolverSlidAlongTheGrownEndWithinRoundingDidNotEnter) {
   // Slid 10 um inside the grown end, it did enter, through the grown top face it came down past,
   // and goes back out that way.
   m_memory.forget();
-  const std::vector<Contact> entered = step(checked, face({grownEnd - 1e-5, 0, 0}, 0.51), end);
+  const std::vector<PatchContact> entered = step(checked, face({grownEnd - 1e-5, 0, 0}, 0.51), end);
   ASSERT_FALSE(entered.empty());
   EXPECT_EQ(entered[0].kind, ContactKind::SoftNode);
   EXPECT_GT(entered[0].normal.y, 0.99);

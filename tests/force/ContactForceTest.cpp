@@ -69,7 +69,7 @@ struct Press {
   RestShape rest;
   ForceResult result;
   std::vector<FaceForce>& forces = result.faces;
-  std::vector<Contact> contacts;
+  std::vector<PatchContact> contacts;
   std::vector<Vec3> anchors;
   RigidFit fit;
   ForceSettings settings;
@@ -87,7 +87,7 @@ struct Press {
     // Every node above y = 0.9 is held by a contact of the tool's underside, pushing down.
     for (Index v = 0; v < patch.vertexCount(); ++v) {
       if (patch.positions[v].y > 0.9) {
-        Contact contact;
+        PatchContact contact;
         contact.kind = ContactKind::SoftNode;
         contact.softNodeCount = 1;
         contact.softNodes[0] = patch.nodeIds[v];

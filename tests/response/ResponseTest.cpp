@@ -19,7 +19,7 @@ struct Fixture {
   ToolModel model;
   Pose pose;
   SoftPatch patch;
-  std::vector<Contact> contacts;
+  std::vector<PatchContact> contacts;
   ResponseResult result;
   std::vector<NodeCorrection>& corrections = result.corrections;
   Wrench& wrench = result.wrench;
@@ -56,7 +56,7 @@ struct Fixture {
     return node;
   }
   void contact(Index faceIndex, const Vec3& normal, const Vec3& barycentric, Real depth) {
-    Contact c;
+    PatchContact c;
     c.toolNode = nodeFacing(normal);
     c.patchFace = faceIndex;
     c.softNodeCount = 3;
@@ -69,8 +69,8 @@ struct Fixture {
     contacts.push_back(c);
   }
   // A swept contact of soft node v with the plate's underside, y = 0, grown by the skin.
-  Contact& underside(Index v) {
-    Contact c;
+  PatchContact& underside(Index v) {
+    PatchContact c;
     c.kind = ContactKind::SoftNode;
     c.softNodeCount = 1;
     c.patchVertices = {v, kInvalidIndex, kInvalidIndex};
@@ -157,7 +157,7 @@ TEST(Response, NoCorrectionEndsInsideTheTool) {
   const Index a = f.vertex({-0.1, -0.005, -0.1});
   const Index b = f.vertex({0.1, -0.005, -0.1});
   const Index c = f.vertex({0, -0.005, 0.1});
-  Contact contact;
+  PatchContact contact;
   contact.kind = ContactKind::ToolPoint;
   contact.softNodeCount = 3;
   contact.patchVertices = {a, c, b};
@@ -302,7 +302,7 @@ Vec3 pushedOverTheRim(const Vec3& startOfStep, const Vec3& now, const Vec3& targ
   const Index free = f.vertex(now, 2, &startOfStep);
   const Index c = f.vertex({0.3, 0.03, 0.1}, 0);
   const Index face = f.face(a, free, c);
-  Contact contact;
+  PatchContact contact;
   contact.kind = ContactKind::ToolPoint;
   contact.patchFace = face;
   contact.softNodeCount = 3;

@@ -24,9 +24,8 @@
 
 #include <BulletSoftBody/btSoftBodyRigidBodyCollisionConfiguration.h>
 
-#include <cstdint>
+#include <cstddef>
 #include <memory>
-#include <unordered_map>
 #include <vector>
 
 class btCollisionAlgorithm;
@@ -38,9 +37,7 @@ struct btCollisionAlgorithmConstructionInfo;
 
 namespace thintool {
 
-class CollisionConfiguration;
 namespace detail {
-class CollisionPass;
 void beginCollisionPass(btCollisionWorld& world);
 }  // namespace detail
 
@@ -58,9 +55,9 @@ class THINTOOL_API CollisionConfiguration : public btSoftBodyRigidBodyCollisionC
   Tool* findTool(const btCollisionObject& object) const;
   /// Bytes ThinTool's collision algorithm takes from the dispatcher's pool.
   static int algorithmSize();
-  std::size_t toolCount() const { return m_tools.size(); }
+  std::size_t toolCount() const;
   /// The registered tools, in the order they were added.
-  const std::vector<Tool*>& tools() const { return m_toolOrder; }
+  const std::vector<Tool*>& tools() const;
 
  private:
   // Registration goes through thintool::addTool/removeTool, which also re-route the body's
@@ -72,18 +69,11 @@ class THINTOOL_API CollisionConfiguration : public btSoftBodyRigidBodyCollisionC
   bool removeTool(const btCollisionObject& body);
 
   struct CreateFunc;
+  struct State;
   btCollisionAlgorithm* createAlgorithm(btCollisionAlgorithmConstructionInfo& info, const btCollisionObjectWrapper* body0,
                                         const btCollisionObjectWrapper* body1, bool swapped,
                                         btCollisionAlgorithmCreateFunc& stock);
-  std::unordered_map<const btCollisionObject*, std::unique_ptr<Tool>> m_tools;
-  std::vector<Tool*> m_toolOrder;  // the same tools in registration order, so that steps are repeatable
-  /// Swept tools' broadphase proxies, and their tools.
-  std::unordered_map<const btCollisionObject*, Tool*> m_proxies;
-  std::uint64_t m_toolsCreated = 0;
-  std::unique_ptr<CreateFunc> m_createFunc;
-  std::unique_ptr<CreateFunc> m_swappedCreateFunc;
-  /// Shared by the tools: how far their responses moved soft nodes in the current pass.
-  std::unique_ptr<detail::CollisionPass> m_pass;
+  std::unique_ptr<State> m_state;
 };
 
 /// Registers body as a thin tool of world, whose dispatcher must have been built with a

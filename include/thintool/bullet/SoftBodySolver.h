@@ -27,25 +27,25 @@
 /// them. Tool::report() says what the stages did and what they left (ToolDiagnostics::lastWord).
 
 #include <thintool/core/Api.h>
-#include <thintool/response/Separation.h>
 
 #include <BulletSoftBody/btDefaultSoftBodySolver.h>
 
-#include <array>
-#include <vector>
-
-class btRigidBody;
-class btSoftBody;
+#include <memory>
 
 namespace thintool {
 
 class CollisionConfiguration;
-class Tool;
+namespace detail {
+class SoftBodySolverImpl;
+}  // namespace detail
 
 class THINTOOL_API SoftBodySolver : public btDefaultSoftBodySolver {
  public:
   /// configuration: the world's, whose tools get the last word; it must outlive the solver.
   explicit SoftBodySolver(CollisionConfiguration& configuration);
+  ~SoftBodySolver() override;
+  SoftBodySolver(const SoftBodySolver&) = delete;
+  SoftBodySolver& operator=(const SoftBodySolver&) = delete;
 
   // See: btDefaultSoftBodySolver::solveConstraints
   void solveConstraints(btScalar timeStep) override;
@@ -53,227 +53,7 @@ class THINTOOL_API SoftBodySolver : public btDefaultSoftBodySolver {
   void predictMotion(btScalar timeStep) override;
 
  private:
-  // The energy guard's measures of one soft body in this step (EnergyGuardSettings).
-  struct BodyEnergy {
-    double predicted = -1;  // kinetic energy about the centre of mass before the solve (J); < 0: not guarded
-    double allowance = 0;   // ½·m·u² over the nodes ThinTool moved, u the tool's speed there (J)
-    double toolAtMovedNodes = 0;  // the fastest tool point at a node ThinTool moved (m/s)
-    double predictedFastest = 0;  // the fastest node as Bullet predicted it, before the solve (m/s)
-    double toolFastest = 0;  // the guarding tools' fastest corner over the step (m/s)
-    int piecesHolding = 0;   // tool pieces whose response moved or held a node of the body this step
-    double speedFactor = 1;
-    double energySlack = 0;
-    double restingSpeed = 0;
-    bool boundForcesNextStep = false;
-    bool lastWordFollows = false;  // a guarding tool's last word runs after the solve
-  };
-
-  // Where the tool's motion over this step starts: where the last word left it, or where it is
-  // now after a jump (Tool::resetMotion).
-  static Pose stepStart(const Tool& tool, const Pose& now);
-  // Before Bullet's solve: which soft bodies are guarded, their predicted energy and fastest node,
-  // and what the collision pass's moves allow.
-  void measureEnergy(btScalar timeStep);
-  // After the last word: the guarded bodies' velocities brought within their bounds.
-  void guardEnergy();
-  // A pressure body's fastest node at the end of this step (SoftBodyCache::endFastest), where the
-  // guard acted on it or, unguarded, where a guarding tool's pair with it is live.
-  void recordPressureSpeeds(btSoftBody& softBody, bool guarded, double fastest);
-  bool guardingToolNear(const btSoftBody& body) const;
-  // Whether the tool's pair with the body is live this step.
-  static bool hasLivePair(const Tool& tool, const btSoftBody& body);
-
-  // One pass of the tool's pieces over the soft bodies; returns whether it moved anything. With
-  // lastResort, each piece only carries the faces that still meet it (carryMeetingFaces).
-  bool separate(Tool& tool, bool lastResort);
-  SeparationCounts separatePiece(Tool& tool, const ToolModel& piece, const PieceMotion& motion, btSoftBody& softBody,
-                                 bool lastResort, const std::vector<NearPiece>& near);
-  // Fills m_nearPieces with the pieces of every tool whose reach meets that of the tool's piece p.
-  void findNearPieces(const Tool& tool, Index p, const PieceMotion& motion);
-
-  // What the gather keeps per soft body. The faces of each node (CSR), rebuilt when the body's
-  // node or face count changes. And a bound on how far a face's box (its nodes at the start and
-  // the end of the step) reaches from any of its nodes: a face whose box meets the piece's reach
-  // has every node within that bound of it, so the gather looks at the faces of the nodes near
-  // the reach grown by it, never at all the faces. The bound is measured exactly, then grown
-  // each step by twice the farthest any node moved, and measured again once it has grown
-  // kReachGrowth-fold.
-  struct SoftBodyCache {
-    const btSoftBody* softBody = nullptr;
-    Index nodeCount = kInvalidIndex;
-    Index faceCount = kInvalidIndex;
-    // Where the body's node and face arrays were: a body deleted and another made at the same
-    // address, or arrays grown in place of others, are not taken for the same topology.
-    const void* nodes = nullptr;
-    const void* faceArray = nullptr;
-    std::vector<Index> begin;
-    std::vector<Index> faces;
-    std::vector<std::array<Index, 3>> faceNodes;  // each face's nodes, read without Bullet's face records
-    // Every edge of the faces is shared by exactly two of them: the surface bounds a volume, and
-    // whether a tool piece lies inside it has an answer (the winding number).
-    bool closed = false;
-    Real faceReach = 0;
-    Real measuredReach = -1;  // at the last exact measure; negative: never measured
-    int stepSeen = -1;
-    // Every node at the start and the end of this step, when boundsHold (all of them finite).
-    Aabb bounds;
-    bool boundsHold = false;
-    // The pinned nodes (zero inverse mass), listed in steps where a dynamic tool takes reactions.
-    std::vector<Index> pinned;
-    // The nodes the step's gathers can want, so that each gather looks at these, not at every
-    // node: those whose move this step meets the step's reach grown by kReachGrowth times the
-    // measured face reach (what faceReach can grow to before it is measured again), and those the
-    // last word has moved since. Kept in the order of the body's nodes when a gather reads them.
-    // Without a measure to grow from, or after one that outgrew it, candidatesHold is false and
-    // the gathers look at every node.
-    std::vector<Index> candidates;
-    std::vector<unsigned char> isCandidate;  // per node
-    bool candidatesHold = false;
-    bool candidatesSorted = true;
-    Real candidateReach = 0;  // the face reach the candidates cover
-    // How much further a face reaches since the survey for the last word's moves in this step: the
-    // face reach covers the solve's moves only.
-    Real lastWordReach = 0;
-    // The bound on what the body's forces add to a node's velocity in the step after boundStep
-    // (EnergyGuardSettings::boundForcesNextStep), m/s per axis: the larger of speedFactor times
-    // the fastest node, tool corner or restingSpeed, and, in a grasp, the body's extent over the step.
-    double nextForceBound = 0;
-    int boundStep = -1;
-    // A pressure body's fastest node at the end of step speedStep, as the guard left it, and at the
-    // end of the latest step the guard did not act in (m/s; negative: not measured). Bullet
-    // applies the pressure in its prediction and the links take most of it back in the solve, so
-    // the predicted speed of a light pressure body (60 to 200 m/s where it ends a step at 7) is no
-    // measure of its own motion; these are.
-    double endFastest = -1;
-    double ownFastest = -1;
-    int speedStep = -1;
-  };
-  SoftBodyCache& cacheOf(const btSoftBody& softBody);
-  SoftBodyCache* findCache(const btSoftBody& softBody);  // nullptr: none yet
-  // The stage on the gathered patch, run again with the faces of the nodes it moved until none is
-  // missing.
-  SeparationCounts separateGrowingPatch(Tool& tool, const ToolModel& piece, const PieceMotion& motion,
-                                        const btSoftBody& softBody, const SoftBodyCache& cache, bool lastResort,
-                                        const std::vector<NearPiece>& near);
-  // A turning piece whose centre ends the step inside a closed body it was outside of at the start
-  // is put back outside (see the definition).
-  void keepOutsideClosedBody(Tool& tool, const ToolModel& piece, const PieceMotion& motion, const btSoftBody& softBody,
-                             const SoftBodyCache& cache, const std::vector<NearPiece>& near,
-                             SeparationCounts& counts);
-  // The patch's vertex of a soft node, added with the node when absent; a soft face, added once.
-  Index patchVertexOf(const btSoftBody& softBody, Index node);
-  void addPatchFace(const btSoftBody& softBody, const SoftBodyCache& cache, Index f);
-  // The body's cache with its topology up to date, not yet surveyed in this step.
-  SoftBodyCache& topologyOf(const btSoftBody& softBody);
-  // Once a step, a pass over the body's nodes: the face reach, the box of the nodes and the
-  // gathers' candidates. Run in the solve's last pass over the nodes where the solve is ThinTool's
-  // (solveInStages), or on its own.
-  struct NodeSurvey {
-    btScalar farthest = 0;  // squared
-    bool finite = true;
-    btVector3 lowest{BT_LARGE_FLOAT, BT_LARGE_FLOAT, BT_LARGE_FLOAT};
-    btVector3 highest{-BT_LARGE_FLOAT, -BT_LARGE_FLOAT, -BT_LARGE_FLOAT};
-    btVector3 wantedLow{0, 0, 0};  // where a node's move makes it a candidate
-    btVector3 wantedHigh{0, 0, 0};
-    bool collect = false;
-  };
-  NodeSurvey beginSurvey(SoftBodyCache& cache, int step);
-  // pinned: the node is pinned and the step lists pinned nodes (m_dynamicToolsActive).
-  void surveyNode(NodeSurvey& survey, SoftBodyCache& cache, int i, const btVector3& x, const btVector3& q, bool pinned);
-  void finishSurvey(const NodeSurvey& survey, SoftBodyCache& cache, const btSoftBody& softBody);
-  // The soft body's pinned nodes stop the dynamic tool that carries the piece short of them.
-  void stopAtPinnedNodes(btRigidBody& tool, const ToolModel& piece, const Pose& pieceEnd, Real inverseStep,
-                         const SoftBodyCache& cache, const btSoftBody& softBody, Index& nonFiniteWrites);
-  // The soft solve of each active body. A body that tools hold in the solver (their holds among
-  // its contacts), that the last word will look at or that the energy guard bounds is solved by
-  // solveInStages, the others by Bullet's own solveConstraints.
-  void solveSoftBodies();
-  // Whether a tool of this step's last word acts on the body.
-  bool lastWordReaches(const btSoftBody& body) const;
-  // Lists in m_held the nodes that tools hold in this body's solve; false when none.
-  bool collectHolds(btSoftBody& body);
-  // btSoftBody::solveConstraints, stage for stage, with each contact stage of the position solve
-  // measured (the moves of the held nodes are the impulses their holds applied) and the last
-  // word's survey in its last pass over the nodes.
-  // longestMove (m): a guarded body's bound on each node's move over the step (fastestAllowed),
-  // BT_LARGE_FLOAT for none.
-  void solveInStages(btSoftBody& body, btScalar longestMove);
-  // Calls report with the last-word diagnostics of each tool with a live pair on the body.
-  template <typename Report>
-  void reportToToolsNear(const btSoftBody& body, const Report& report);
-  // The energy guard's bound on a node's speed (EnergyGuardSettings), m/s.
-  static double fastestAllowed(const BodyEnergy& energy);
-  // Splits a contact stage's moves of the nodes that several tools held among those tools.
-  void replaySharedHolds(btSoftBody& body, double inverseStepSquared);
-
-  // Fills m_backingOfNode from the soft body's contacts of this step.
-  void findBackings(const btSoftBody& softBody);
-
-  // How far the face reach may grow before it is measured again, as a multiple of the last
-  // measure: the measure visits every face, and the gather's work grows with the reach.
-  static constexpr Real kReachGrowth = 2;
-  static constexpr int kMostPasses = 4;
-  // A bound on one step's work only: the patch grows until no moved node has a face outside it,
-  // one ring of faces an extension, and a patch that only grows ends by itself. A cascade of faces
-  // pushed into a plate by their neighbours' moves took more than four extensions (generated
-  // seed 70, a tetrahedral box under a plate turning 156° a step); one along a 0.6 m needle read
-  // on its chord took 119, and a bound of 64 left faces across it (seed 5451).
-  static constexpr int kMostExtensions = 1024;
-
-  CollisionConfiguration& m_configuration;
-  std::vector<Tool*> m_active;  // tools whose stage runs this step
-  int m_piecesNear = 0;         // (piece, soft body) pairs with soft features near, this pass
-  SeparationPatch m_patch;
-  std::vector<NearPiece> m_nearPieces;  // the pieces near the one being separated
-  std::vector<Index> m_vertexOfNode;  // soft node -> patch vertex, kInvalidIndex when absent
-  std::vector<unsigned char> m_faceInPatch;  // soft face -> whether the patch has it
-  std::vector<Index> m_patchFaces;           // the soft faces the patch has
-  std::vector<SoftBodyCache> m_caches;
-  std::vector<BodyEnergy> m_energy;  // one per soft body of the world, this step
-  std::vector<Index> m_nearNodes;  // soft nodes near the piece's reach grown by the face reach
-  std::vector<unsigned char> m_isNearNode;  // soft node -> whether m_nearNodes has it, during a gather
-  // Every active tool's pieces, swept over this step and grown by their clearance; hasStepReach is
-  // false until the step's tools are known.
-  Aabb m_stepReach;
-  bool m_hasStepReach = false;
-  // soft node -> its contact in the soft body's m_rcontacts with a static or kinematic body, -1 for
-  // none; filled only while a dynamic tool takes the reaction of moved nodes
-  std::vector<int> m_backingOfNode;
-  // A soft node that tools held in this step's solve: the first tool that held it, whether others
-  // did too or a contact of Bullet's own holds it as well, and where it was before a contact stage.
-  struct HeldNode {
-    int node = 0;
-    Tool* tool = nullptr;
-    bool severalTools = false;
-    bool bulletContact = false;
-    btVector3 before{0, 0, 0};
-    btVector3 replayed{0, 0, 0};
-  };
-  // A hold on a node that several tools held: the contact stage's move of such a node is split
-  // among them by replaying their holds one by one, in the stage's order.
-  struct SharedHold {
-    int contact = 0;
-    int held = 0;  // entry in m_held
-    Tool* tool = nullptr;
-  };
-  std::vector<HeldNode> m_held;
-  std::vector<SharedHold> m_sharedHolds;
-  // A hold whose tool limits how far along its plane it reaches (BulletSettings::holdPlaneReach):
-  // before each contact stage its contact's normal is the plane's, or zero, which Bullet's contact
-  // stage leaves idle, when the node put on the plane lies beyond the piece grown by reach.
-  struct ReachingHold {
-    int contact = 0;
-    const ToolModel* piece = nullptr;
-    Pose piecePose;
-    Real reach = 0;  // m, past the piece's faces
-    btVector3 normal{0, 0, 0};
-  };
-  std::vector<ReachingHold> m_reachingHolds;
-  // Sets each reaching hold's contact normal for the next contact stage (see ReachingHold).
-  void limitHoldReach(btSoftBody& body);
-  std::vector<int> m_heldOfNode;  // soft node -> its entry in m_held, -1 for none
-  int m_step = 0;
-  bool m_dynamicToolsActive = false;  // a tool of this step's last word is dynamic and takes reactions
+  std::unique_ptr<detail::SoftBodySolverImpl> m_impl;
 };
 
 }  // namespace thintool

@@ -7,10 +7,10 @@
 
 #include <thintool/bullet/ToolOptions.h>
 #include <thintool/core/Api.h>
-#include <thintool/detection/Detection.h>
-#include <thintool/detection/SweptDetection.h>
-#include <thintool/response/Response.h>
-#include <thintool/tool/ToolModel.h>
+#include <thintool/core/Math.h>
+#include <thintool/detection/DetectionTypes.h>
+#include <thintool/force/ForceTypes.h>
+#include <thintool/response/ResponseTypes.h>
 
 #include <memory>
 #include <string>
@@ -154,11 +154,13 @@ struct ToolStepReport {
 class CollisionConfiguration;
 
 class SoftBodySolver;
+struct ToolModel;
 namespace detail {
-class CollisionPass;
 struct PairState;
+class SoftBodySolverImpl;
 class ToolAlgorithm;
 class SweptProxy;
+struct ToolState;
 }  // namespace detail
 
 /// Created by addTool(); owned by the world's thintool::CollisionConfiguration.
@@ -170,20 +172,22 @@ class THINTOOL_API Tool {
   Tool(const Tool&) = delete;
   Tool& operator=(const Tool&) = delete;
 
-  const std::string& name() const { return m_options.name; }
-  btCollisionObject& body() const { return m_body; }
+  const std::string& name() const;
+  btCollisionObject& body() const;
   /// The body as a btRigidBody, or null for a plain btCollisionObject (a static tool, or one the
   /// program moves).
   btRigidBody* rigidBody() const;
   /// The body when it is a dynamic btRigidBody, which takes the tissue's reaction; else null.
   btRigidBody* dynamicBody() const;
-  const ToolOptions& options() const { return m_options; }
+  const ToolOptions& options() const;
 
   /// Convex pieces: one for a convex shape, one per child for a btCompoundShape.
-  Index pieceCount() const { return static_cast<Index>(m_pieces.size()); }
-  const ToolModel& piece(Index i) const { return m_pieces[i]; }
+  Index pieceCount() const;
+  /// The piece's model (its planes, hull and sample nodes; declared in the core's tool/ToolModel.h,
+  /// which the viewer and the evaluation suite read).
+  const ToolModel& piece(Index i) const;
   /// A piece's frame in the body's frame (identity but for compound children).
-  const Pose& pieceTransform(Index i) const { return m_pieceTransforms[i]; }
+  const Pose& pieceTransform(Index i) const;
   Index nodeCount() const;
 
   /// Contacts, diagnostics and wrench of the latest simulation step. Read it after
@@ -204,53 +208,13 @@ class THINTOOL_API Tool {
  private:
   friend class detail::ToolAlgorithm;
   friend class detail::SweptProxy;
+  friend class detail::SoftBodySolverImpl;
   friend class CollisionConfiguration;
-  friend class SoftBodySolver;
   friend Tool& addTool(btCollisionWorld&, btCollisionObject&, const ToolOptions&);
   friend bool removeTool(btCollisionWorld&, const btCollisionObject&);
-  detail::PairState& pairState(btSoftBody& softBody, Index piece);
-  /// The soft body's rest shape, captured now if it has none or its node count changed.
-  RestShape& restShape(const btSoftBody& softBody);
-  /// Swept detection's view of the tool's motion in this step: the body's pose at its start and at
-  /// its end. Kinematic and static tools: the pose the last time the proxy's box was updated, and
-  /// now. Dynamic tools: Bullet's pose now and its unconstrained prediction for the step's end.
-  void bodyMotion(Pose& outPrevious, Pose& outCurrent) const;
-  /// Called once per simulation step, when Bullet updates the proxy's box: moves "now" to "before".
-  void trackMotion();
+  detail::ToolState& state() const { return *m_state; }
 
-  btCollisionObject& m_body;
-  ToolOptions m_options;
-  std::vector<ToolModel> m_pieces;
-  std::vector<Pose> m_pieceTransforms;
-  std::vector<std::unique_ptr<detail::PairState>> m_pairs;
-  struct SoftRest {
-    const btSoftBody* softBody = nullptr;
-    RestShape shape;
-  };
-  std::vector<std::unique_ptr<SoftRest>> m_restShapes;
-  /// With swept detection: the collision object whose box is the tool's swept box, so that Bullet
-  /// makes a pair with every soft body the tool sweeps past (the tool's own box is not swept).
-  /// Owned by the tool, but it is in the world's object array, which Bullet programs free at exit
-  /// object by object: deleted there, it tells the tool (SweptProxy's destructor), which then does
-  /// not delete it again.
-  detail::SweptProxy* m_proxy = nullptr;
-  Pose m_poseBefore;
-  Pose m_poseNow;
-  bool m_motionTracked = false;
-  bool m_jumpNext = false;
-  SweptWorkspace m_sweptWorkspace;
-  ToolStepReport m_report;
-  /// The last word's view of the motion: the body's pose when the stage last ran (the start of
-  /// this step), whether it has one, and whether resetMotion() declared the next move a jump.
-  Pose m_separatedPose;
-  bool m_hasSeparatedPose = false;
-  bool m_separationJump = false;
-  LastWordDiagnostics m_lastWord;
-  Wrench m_holdWrench;  // this step's, torque about the world's origin
-  Index m_holdNodesShared = 0;
-  Pose m_lastFiniteBodyPose;  // the report's frame when the body's transform is not finite
-  /// The configuration's record of the current collision pass; null for a tool made without one.
-  detail::CollisionPass* m_pass = nullptr;
+  std::unique_ptr<detail::ToolState> m_state;
 };
 
 }  // namespace thintool

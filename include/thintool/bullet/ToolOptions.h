@@ -7,11 +7,10 @@
 /// (a 0.8 × 0.02 × 0.8 m plate into a 128-face ball of radius 1 m) and scale with the tool's size.
 
 #include <thintool/core/Api.h>
-#include <thintool/detection/Detection.h>
-#include <thintool/force/ContactForce.h>
-#include <thintool/response/Response.h>
-#include <thintool/response/Separation.h>
-#include <thintool/tool/ToolModel.h>
+#include <thintool/detection/DetectionTypes.h>
+#include <thintool/force/ForceTypes.h>
+#include <thintool/response/ResponseTypes.h>
+#include <thintool/tool/ToolModelSettings.h>
 
 #include <limits>
 #include <optional>

@@ -29,6 +29,7 @@
 #include <thintool/core/StepStamps.h>
 #include <thintool/detection/Detection.h>
 #include <thintool/detection/SoftPatch.h>
+#include <thintool/force/ForceTypes.h>
 #include <thintool/tool/StepContext.h>
 #include <thintool/tool/ToolModel.h>
 
@@ -38,48 +39,8 @@
 
 namespace thintool {
 
-enum class DeformationMeasure : std::uint8_t { CentroidDisplacement, Indentation };
-
-/// F = k·xⁿ + λ·xⁿ·ẋ, clamped at 0.
-struct HuntCrossley {
-  Real stiffness = 100;  ///< k (N/mⁿ, >= 0)
-  Real damping = 50;     ///< λ (N·s/mⁿ⁺¹, >= 0); λ/k is the model's c (s/m)
-  Real exponent = 1.5;   ///< n (> 0): 1 for a flat face pressing, 3/2 for a rounded tip (Hertz)
-};
-
-/// The force of one face for a deformation x (m) and its rate ẋ (m/s): a replacement for the
-/// Hunt–Crossley law. A negative or non-finite result counts as 0.
-using ForceLaw = std::function<Real(Real deformation, Real rate)>;
-
-struct ForceSettings {
-  /// Off, no force is computed, reported or applied (a dynamic tool then receives the response's
-  /// reaction, see ResponseSettings).
-  bool enabled = false;
-  DeformationMeasure measure = DeformationMeasure::Indentation;
-  HuntCrossley huntCrossley;
-  /// Replaces huntCrossley when set.
-  ForceLaw law;
-  /// How far beyond the skin a soft node still touches the tool (m, >= 0).
-  Real touchTolerance = 0.001;
-  /// Cut-off frequency (Hz, > 0) of the first-order low-pass filter on ẋ; 0 leaves ẋ unfiltered.
-  Real rateCutoff = 30;
-  /// The point the reported torque is taken about, in the tool body's frame (m): the grip, say.
-  Vec3 torquePoint;
-  /// A dynamic tool receives the force as its reaction, in place of the response's.
-  bool applyToDynamicTool = true;
-};
-
 /// Hunt–Crossley's law, clamped at 0; 0 for x <= 0 and for non-finite input.
 Real huntCrossleyForce(const HuntCrossley& model, Real deformation, Real rate);
-
-/// The force of one soft face in contact, on the tool.
-struct FaceForce {
-  Index softFace = kInvalidIndex;  ///< in the soft body
-  Vec3 point;                      ///< world: the face's centroid
-  Vec3 force;                      ///< world (N), on the tool
-  Real deformation = 0;            ///< x (m)
-  Real rate = 0;                   ///< filtered ẋ (m/s)
-};
 
 /// A soft body's rest shape, and the nodes its rigid motion is estimated from.
 class RestShape {
@@ -126,7 +87,7 @@ class ForceHistory {
   void reset();
 
  private:
-  friend void computeContactForces(const StepContext&, const SoftPatch&, const std::vector<Contact>&, const ForceInput&,
+  friend void computeContactForces(const StepContext&, const SoftPatch&, const std::vector<PatchContact>&, const ForceInput&,
                                    ForceResult&);
   std::vector<Real> m_lastDeformation;
   std::vector<Real> m_rate;
@@ -151,7 +112,7 @@ struct ForceResult {
 /// (grown by its skin), on the tool. patch.positions must hold where the response left the nodes;
 /// contacts' patchVertices index into patch. Allocates nothing once the result has grown to the
 /// soft body.
-void computeContactForces(const StepContext& step, const SoftPatch& patch, const std::vector<Contact>& contacts,
+void computeContactForces(const StepContext& step, const SoftPatch& patch, const std::vector<PatchContact>& contacts,
                           const ForceInput& input, ForceResult& out);
 
 }  // namespace thintool

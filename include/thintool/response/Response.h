@@ -45,37 +45,12 @@
 /// - ResponseKind::None: contacts are reported, nothing is moved.
 
 #include <thintool/detection/Detection.h>
+#include <thintool/response/ResponseTypes.h>
 #include <thintool/tool/StepContext.h>
 
 #include <vector>
 
 namespace thintool {
-
-enum class ResponseKind { Constraint, PaperForce, None };
-
-/// Coulomb friction between the tool and the soft nodes it moves, in position form (after
-/// Macklin et al., "Unified particle physics for real-time applications", 2014, §6.1): a moved
-/// node's tangential motion relative to the tool's surface is undone while it is within
-/// staticCoefficient × the node's normal move (it sticks), and reduced by kineticCoefficient × that
-/// move otherwise (it slides). The normal move stands for the normal force, N = m·d/dt². Off, it
-/// costs nothing.
-///
-/// The Bullet glue can put its own coefficients in their place (BulletSettings::frictionFromBodies).
-struct FrictionSettings {
-  bool enabled = false;
-  Real staticCoefficient = 0.8;   ///< μs (>= 0)
-  Real kineticCoefficient = 0.6;  ///< μk (>= 0, <= μs)
-};
-
-struct ResponseSettings {
-  ResponseKind kind = ResponseKind::Constraint;
-  /// PaperForce: k of f = k·t (N/m, > 0).
-  Real stiffness = 1000;
-  /// Constraint: the node guard. Off, only nodes of faces the rays hit are moved.
-  bool guardNodes = true;
-  /// Constraint only: friction at the moved nodes (in Bullet, see also BulletSettings).
-  FrictionSettings friction;
-};
 
 /// A soft node's move, and the direction it was moved out along.
 struct NodeCorrection {
@@ -92,12 +67,6 @@ struct NodeHold {
   Vec3 normal;
   Real offset = 0;
   bool sticks = false;  ///< the solver also keeps the node from sliding along the plane
-};
-
-/// Net force on the tool (N) and torque about the tool's origin (N·m) from this step's response.
-struct Wrench {
-  Vec3 force;
-  Vec3 torque;
 };
 
 struct ResponseResult;
@@ -130,7 +99,7 @@ struct ResponseResult {
 /// SoftPatch::previousPositions against it); a node that began the step inside the skin returns to
 /// it at the context's skinGrowthSpeed. Nodes of zero inverse mass (pinned) are never moved.
 /// Allocates nothing once the result has grown to the patch.
-void computeResponse(const StepContext& step, const SoftPatch& patch, const std::vector<Contact>& contacts,
+void computeResponse(const StepContext& step, const SoftPatch& patch, const std::vector<PatchContact>& contacts,
                      const ResponseSettings& settings, ResponseResult& out);
 
 /// The planes that keep the soft solver from undoing the response, or from dragging a node through

@@ -60,6 +60,7 @@
 ///   further than twice the path of the piece's farthest-going corner in the step. What is still
 ///   violated then is counted, never hidden.
 
+#include <thintool/response/ResponseTypes.h>
 #include <thintool/tool/ToolModel.h>
 
 #include <array>
@@ -67,18 +68,6 @@
 #include <vector>
 
 namespace thintool {
-
-struct SeparationSettings {
-  /// Runs the stage (in thintool::SoftBodySolver). Off, it costs nothing.
-  bool enabled = true;
-  /// How far outside the piece a corrected node or face is put (m, > 0): rounding in Bullet's
-  /// float build must not carry it back in.
-  Real clearance = 1e-5;
-  /// Most alternations of node and face moves in a step (>= 1).
-  int maxRounds = 32;
-  /// Largest turn of the piece between two samples of its arc (radians, > 0).
-  Real maxTurnPerSample = Real(5) * kPi / 180;
-};
 
 /// The soft features near one tool piece, in the world frame, gathered by the glue.
 struct SeparationPatch {
@@ -138,27 +127,6 @@ struct SeparationPatch {
     movedInRound.clear();
     faceMet.clear();
     inCluster.clear();
-  }
-};
-
-/// What the stage did to one patch, and what it left.
-struct SeparationCounts {
-  Index nodesMoved = 0;    ///< node moves (a node moved in two rounds counts twice)
-  Index facesMoved = 0;    ///< face moves
-  Index nodesInside = 0;   ///< left inside the piece by more than half the clearance (expected 0)
-  Index facesPierced = 0;  ///< left meeting the piece by more than half the clearance (expected 0)
-  /// Nodes and faces, in the first round, that the chord reading takes through a turning piece and
-  /// the arc reading spares: where the glue may have to choose between the two.
-  Index arcSpared = 0;
-  int rounds = 0;
-
-  void accumulate(const SeparationCounts& o) {
-    nodesMoved += o.nodesMoved;
-    facesMoved += o.facesMoved;
-    nodesInside += o.nodesInside;
-    facesPierced += o.facesPierced;
-    arcSpared += o.arcSpared;
-    rounds = rounds > o.rounds ? rounds : o.rounds;
   }
 };
 
