@@ -2,8 +2,9 @@
 // Copyright (c) 2026 The ThinTool developers
 #include "GroundTruth.h"
 
+#include "geometry/SolidAngle.h"
+
 #include <thintool/core/Error.h>
-#include <thintool/geometry/SolidAngle.h>
 
 #include <algorithm>
 #include <cmath>

@@ -4,8 +4,9 @@
 // libFuzzer target: the tool-model builder on random meshes and settings. Whatever the input, it
 // either throws thintool::Error or returns a model whose every number is finite.
 
+#include "tool/ToolModel.h"
+
 #include <thintool/core/Error.h>
-#include <thintool/tool/ToolModel.h>
 
 #include <fuzzer/FuzzedDataProvider.h>
 

@@ -10,7 +10,7 @@
 
 #include <LinearMath/btConvexHullComputer.h>
 
-#include <thintool/geometry/RayTriangle.h>
+#include "geometry/RayTriangle.h"
 
 #include <algorithm>
 #include <array>

@@ -9,9 +9,9 @@
 
 #include "TestMeshes.h"
 
-#include <thintool/detection/Detection.h>
-#include <thintool/detection/SweptDetection.h>
-#include <thintool/response/Response.h>
+#include "detection/Detection.h"
+#include "detection/SweptDetection.h"
+#include "response/Response.h"
 
 #include <benchmark/benchmark.h>
 

@@ -5,7 +5,7 @@
 // node count, turned and moved as a whole and dented on one side, fitted once a step from the last
 // step's fit, as the glue does.
 
-#include <thintool/force/ContactForce.h>
+#include "force/ContactForce.h"
 
 #include <benchmark/benchmark.h>
 

@@ -8,7 +8,7 @@
 // batched one (dispatched, and each variant this CPU runs by name), so that they compare on
 // identical pairs.
 
-#include <thintool/geometry/RayTriangle.h>
+#include "geometry/RayTriangle.h"
 
 #include <benchmark/benchmark.h>
 

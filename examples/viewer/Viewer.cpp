@@ -2,9 +2,10 @@
 // Copyright (c) 2026 The ThinTool developers
 #include "Viewer.h"
 
+#include "tool/ToolModel.h"
+
 #include <thintool/bullet/Convert.h>
 #include <thintool/bullet/Tool.h>
-#include <thintool/tool/ToolModel.h>
 
 #include <BulletSoftBody/btSoftBody.h>
 #include <BulletSoftBody/btSoftRigidDynamicsWorld.h>

@@ -6,11 +6,11 @@
 // algorithm objects: Bullet frees those when a pair separates and creates them anew when it
 // returns, and the pair's algorithm only tells the state when that happens.
 
-#include <thintool/core/StepStamps.h>
-#include <thintool/detection/Detection.h>
-#include <thintool/detection/SweptDetection.h>
-#include <thintool/force/ContactForce.h>
-#include <thintool/response/Response.h>
+#include "core/StepStamps.h"
+#include "detection/Detection.h"
+#include "detection/SweptDetection.h"
+#include "force/ContactForce.h"
+#include "response/Response.h"
 
 #include <array>
 #include <cstdint>

@@ -4,16 +4,16 @@
 
 #include "PairState.h"
 #include "SoftBodySolverImpl.h"
-#include "ToolState.h"
 #include "SoftSurface.h"
 #include "ToolReaction.h"
+#include "ToolState.h"
 #include "WriteCheck.h"
+#include "geometry/SolidAngle.h"
 
 #include <thintool/bullet/CollisionConfiguration.h>
 #include <thintool/bullet/Convert.h>
 #include <thintool/bullet/Tool.h>
 #include <thintool/core/Assert.h>
-#include <thintool/geometry/SolidAngle.h>
 
 #include <BulletDynamics/Dynamics/btRigidBody.h>
 #include <BulletSoftBody/btSoftBody.h>

@@ -5,8 +5,8 @@
 // What thintool::SoftBodySolver does behind its public face (bullet/SoftBodySolver.h): Bullet's
 // solve stage by stage for the bodies tools hold, the last word and the energy guard.
 
-#include <thintool/geometry/Aabb.h>
-#include <thintool/response/Separation.h>
+#include "geometry/Aabb.h"
+#include "response/Separation.h"
 
 #include <LinearMath/btAlignedObjectArray.h>
 #include <LinearMath/btVector3.h>

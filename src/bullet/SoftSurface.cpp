@@ -2,9 +2,10 @@
 // Copyright (c) 2026 The ThinTool developers
 #include "SoftSurface.h"
 
+#include "geometry/RayTriangle.h"
+
 #include <thintool/bullet/Convert.h>
 #include <thintool/core/Assert.h>
-#include <thintool/geometry/RayTriangle.h>
 
 #include <BulletSoftBody/btSoftBody.h>
 #include <BulletSoftBody/btSoftBodyInternals.h>

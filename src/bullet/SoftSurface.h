@@ -10,8 +10,8 @@
 
 #include "PairState.h"
 
-#include <thintool/detection/SoftPatch.h>
-#include <thintool/geometry/Aabb.h>
+#include "detection/SoftPatch.h"
+#include "geometry/Aabb.h"
 
 #include <vector>
 

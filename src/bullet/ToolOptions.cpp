@@ -2,7 +2,7 @@
 // Copyright (c) 2026 The ThinTool developers
 #include <thintool/bullet/ToolOptions.h>
 
-#include <thintool/response/Separation.h>
+#include "response/Separation.h"
 
 #include <cmath>
 #include <sstream>

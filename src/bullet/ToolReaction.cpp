@@ -3,8 +3,9 @@
 
 #include "ToolReaction.h"
 
+#include "geometry/Ccd.h"
+
 #include <thintool/bullet/Convert.h>
-#include <thintool/geometry/Ccd.h>
 
 #include <BulletDynamics/Dynamics/btRigidBody.h>
 #include <LinearMath/btTransformUtil.h>

@@ -10,8 +10,9 @@
 // cap a tool lighter at that point than the node (a needle about its own axis, a light blade) is
 // sent back faster than it came, and the next step's larger moves send it back faster still.
 
+#include "tool/ToolModel.h"
+
 #include <thintool/core/Math.h>
-#include <thintool/tool/ToolModel.h>
 
 #include <LinearMath/btVector3.h>
 

@@ -4,8 +4,9 @@
 
 // From a Bullet collision shape to the convex meshes the tool model is built from.
 
+#include "geometry/ConvexMesh.h"
+
 #include <thintool/core/Math.h>
-#include <thintool/geometry/ConvexMesh.h>
 
 #include <vector>
 

@@ -7,11 +7,11 @@
 // Tool::state().
 
 #include "PairState.h"
+#include "detection/SweptDetection.h"
+#include "force/ContactForce.h"
+#include "tool/ToolModel.h"
 
 #include <thintool/bullet/Tool.h>
-#include <thintool/detection/SweptDetection.h>
-#include <thintool/force/ContactForce.h>
-#include <thintool/tool/ToolModel.h>
 
 #include <memory>
 #include <vector>

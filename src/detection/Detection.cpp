@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: Zlib
 // Copyright (c) 2026 The ThinTool developers
-#include <thintool/detection/Detection.h>
+#include "detection/Detection.h"
+
+#include "geometry/RayTriangle.h"
 
 #include <thintool/core/Assert.h>
-#include <thintool/geometry/RayTriangle.h>
 
 #include <algorithm>
 #include <limits>

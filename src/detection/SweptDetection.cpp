@@ -1,10 +1,11 @@
 // SPDX-License-Identifier: Zlib
 // Copyright (c) 2026 The ThinTool developers
-#include <thintool/detection/SweptDetection.h>
+#include "detection/SweptDetection.h"
+
+#include "geometry/Ccd.h"
+#include "geometry/RayTriangle.h"
 
 #include <thintool/core/Assert.h>
-#include <thintool/geometry/Ccd.h>
-#include <thintool/geometry/RayTriangle.h>
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Zlib
 // Copyright (c) 2026 The ThinTool developers
-#include <thintool/geometry/AabbTree.h>
+#include "geometry/AabbTree.h"
 
 #include <algorithm>
 

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Zlib
 // Copyright (c) 2026 The ThinTool developers
-#include <thintool/geometry/Ccd.h>
+#include "geometry/Ccd.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Zlib
 // Copyright (c) 2026 The ThinTool developers
-#include <thintool/geometry/ConvexMesh.h>
-#include <thintool/geometry/RayTriangle.h>
+#include "geometry/ConvexMesh.h"
+#include "geometry/RayTriangle.h"
 
 #include <algorithm>
 #include <cmath>

@@ -6,7 +6,7 @@
 // Clang's __builtin_cpu_supports, which also checks that the system saves the wider registers).
 // The whole file is compiled with -ffp-contract=off (CMakeLists.txt): AVX-512F brings fused
 // multiply-add, and a fused variant would round differently from the scalar kernel.
-#include <thintool/geometry/RayTriangle.h>
+#include "geometry/RayTriangle.h"
 
 #if (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__)
 #define THINTOOL_BLOCK_KERNEL_X86 1

@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: Zlib
 // Copyright (c) 2026 The ThinTool developers
-#include <thintool/response/Response.h>
+#include "response/Response.h"
+
+#include "geometry/Ccd.h"
 
 #include <thintool/core/Assert.h>
-#include <thintool/geometry/Ccd.h>
 
 #include <algorithm>
 #include <array>

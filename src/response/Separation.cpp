@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: Zlib
 // Copyright (c) 2026 The ThinTool developers
-#include <thintool/response/Separation.h>
+#include "response/Separation.h"
+
+#include "geometry/Ccd.h"
 
 #include <thintool/core/Assert.h>
-#include <thintool/geometry/Ccd.h>
 
 #include <algorithm>
 #include <cmath>

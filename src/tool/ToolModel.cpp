@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: Zlib
 // Copyright (c) 2026 The ThinTool developers
+#include "geometry/RayTriangle.h"
+#include "tool/ToolModel.h"
+
 #include <thintool/core/Error.h>
-#include <thintool/geometry/RayTriangle.h>
-#include <thintool/tool/ToolModel.h>
 
 #include <algorithm>
 #include <cmath>

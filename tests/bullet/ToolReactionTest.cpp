@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: Zlib
 // Copyright (c) 2026 The ThinTool developers
 #include "../../src/bullet/ToolReaction.h"
+#include "geometry/ConvexMesh.h"
+#include "tool/ToolModel.h"
 
 #include <thintool/bullet/Convert.h>
-#include <thintool/geometry/ConvexMesh.h>
-#include <thintool/tool/ToolModel.h>
 
 #include <LinearMath/btTransformUtil.h>
 #include <btBulletDynamicsCommon.h>

@@ -8,7 +8,7 @@
 #define THINTOOL_ENABLE_ASSERTS
 #include <thintool/core/Assert.h>
 
-#include <thintool/response/Response.h>
+#include "response/Response.h"
 
 #include <gtest/gtest.h>
 

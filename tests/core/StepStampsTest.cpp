@@ -4,7 +4,7 @@
 // The memory that spans steps: an item stamped in one step is the previous step's in the next,
 // gone in the one after, and gone at once when the memory forgets.
 
-#include <thintool/core/StepStamps.h>
+#include "core/StepStamps.h"
 
 #include <gtest/gtest.h>
 

@@ -6,7 +6,7 @@
 
 #include "TestMeshes.h"
 
-#include <thintool/detection/Detection.h>
+#include "detection/Detection.h"
 
 #include <gtest/gtest.h>
 

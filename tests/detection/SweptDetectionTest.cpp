@@ -4,7 +4,7 @@
 // Swept detection on one soft face and a needle-like box, in the tool's frame: the face's motion
 // over the step, and the soft solver's move of it since detection last left it.
 
-#include <thintool/detection/SweptDetection.h>
+#include "detection/SweptDetection.h"
 
 #include <gtest/gtest.h>
 

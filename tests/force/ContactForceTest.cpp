@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Zlib
 // Copyright (c) 2026 The ThinTool developers
-#include <thintool/force/ContactForce.h>
+#include "force/ContactForce.h"
 
 #include "TestMeshes.h"
 

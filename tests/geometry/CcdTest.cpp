@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Zlib
 // Copyright (c) 2026 The ThinTool developers
-#include <thintool/geometry/Ccd.h>
-#include <thintool/geometry/RayTriangle.h>
+#include "geometry/Ccd.h"
+#include "geometry/RayTriangle.h"
 
 #include <gtest/gtest.h>
 

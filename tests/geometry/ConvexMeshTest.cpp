@@ -2,7 +2,7 @@
 // Copyright (c) 2026 The ThinTool developers
 #include "TestMeshes.h"
 
-#include <thintool/geometry/ConvexMesh.h>
+#include "geometry/ConvexMesh.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Zlib
 // Copyright (c) 2026 The ThinTool developers
-#include <thintool/geometry/PointGrid.h>
+#include "geometry/PointGrid.h"
 
 #include <gtest/gtest.h>
 

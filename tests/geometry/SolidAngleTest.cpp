@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Zlib
 // Copyright (c) 2026 The ThinTool developers
-#include <thintool/geometry/SolidAngle.h>
+#include "geometry/SolidAngle.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Zlib
 // Copyright (c) 2026 The ThinTool developers
-#include <thintool/response/Response.h>
+#include "response/Response.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Zlib
 // Copyright (c) 2026 The ThinTool developers
-#include <thintool/response/Separation.h>
+#include "response/Separation.h"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // Copyright (c) 2026 The ThinTool developers
 #include "TestMeshes.h"
 
-#include <thintool/geometry/RayTriangle.h>
+#include "geometry/RayTriangle.h"
 
 #include <cmath>
 #include <map>

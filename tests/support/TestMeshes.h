@@ -4,8 +4,8 @@
 
 // Meshes and soft-surface stand-ins for core tests that run without Bullet.
 
-#include <thintool/detection/SoftPatch.h>
-#include <thintool/geometry/ConvexMesh.h>
+#include "detection/SoftPatch.h"
+#include "geometry/ConvexMesh.h"
 
 namespace thintool::test {
 

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: Zlib
 // Copyright (c) 2026 The ThinTool developers
+#include "tool/ToolModel.h"
+
 #include <thintool/core/Error.h>
-#include <thintool/tool/ToolModel.h>
 
 #include <gtest/gtest.h>
 

@@ -11,7 +11,7 @@
 /// segments and one over its node patches; both live in the tool's own frame, so a moving tool
 /// never refits them.
 
-#include <thintool/geometry/Aabb.h>
+#include "geometry/Aabb.h"
 
 #include <vector>
 

@@ -25,13 +25,14 @@
 /// the soft body: the response (response/Response.h) already puts the nodes where the tool
 /// allows, and a second tissue spring on top would count the tissue twice.
 
+#include "core/StepStamps.h"
+#include "detection/Detection.h"
+#include "detection/SoftPatch.h"
+#include "tool/StepContext.h"
+#include "tool/ToolModel.h"
+
 #include <thintool/core/Math.h>
-#include <thintool/core/StepStamps.h>
-#include <thintool/detection/Detection.h>
-#include <thintool/detection/SoftPatch.h>
 #include <thintool/force/ForceTypes.h>
-#include <thintool/tool/StepContext.h>
-#include <thintool/tool/ToolModel.h>
 
 #include <cstdint>
 #include <functional>

@@ -22,10 +22,11 @@
 /// Soft faces are visited once each, and only the rays whose boxes they overlap are tested
 /// (ToolModel::rayTree), so the cost follows the contact region, not the soft body's size.
 
+#include "detection/SoftPatch.h"
+#include "tool/StepContext.h"
+#include "tool/ToolModel.h"
+
 #include <thintool/detection/DetectionTypes.h>
-#include <thintool/detection/SoftPatch.h>
-#include <thintool/tool/StepContext.h>
-#include <thintool/tool/ToolModel.h>
 
 #include <array>
 #include <cstdint>

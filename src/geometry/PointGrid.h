@@ -13,7 +13,7 @@
 /// needle one row), and each cell's points are stored together (compressed rows), so a query reads
 /// memory in order and never allocates.
 
-#include <thintool/geometry/Aabb.h>
+#include "geometry/Aabb.h"
 
 #include <vector>
 

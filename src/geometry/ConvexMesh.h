@@ -6,8 +6,9 @@
 /// The surface of one convex tool piece, in the piece's own frame, and the checks ThinTool runs on
 /// it before building a tool model from it.
 
+#include "geometry/Aabb.h"
+
 #include <thintool/core/Math.h>
-#include <thintool/geometry/Aabb.h>
 
 #include <array>
 #include <string>

@@ -19,8 +19,9 @@
 /// Conservative by construction: a crossing is reported if the features meet within the
 /// tolerances, so a miss is a bug and an extra hit only costs a constraint that is already met.
 
+#include "geometry/ConvexMesh.h"
+
 #include <thintool/core/Math.h>
-#include <thintool/geometry/ConvexMesh.h>
 
 #include <vector>
 

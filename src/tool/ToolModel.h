@@ -25,11 +25,12 @@
 ///   along its normal and at most `probeDepth`: a face deeper than that belongs to the nodes on
 ///   the other side.
 
+#include "geometry/AabbTree.h"
+#include "geometry/ConvexMesh.h"
+#include "geometry/PointGrid.h"
+
 #include <thintool/core/Math.h>
 #include <thintool/tool/ToolModelSettings.h>
-#include <thintool/geometry/AabbTree.h>
-#include <thintool/geometry/ConvexMesh.h>
-#include <thintool/geometry/PointGrid.h>
 
 #include <array>
 #include <optional>

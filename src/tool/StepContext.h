@@ -6,7 +6,7 @@
 /// What every stage of a step reads about it: one tool piece moving over the step, and the skin
 /// it keeps. The glue fills one per piece and soft body; the stages take it first.
 
-#include <thintool/tool/ToolModel.h>
+#include "tool/ToolModel.h"
 
 namespace thintool {
 

@@ -60,8 +60,9 @@
 ///   further than twice the path of the piece's farthest-going corner in the step. What is still
 ///   violated then is counted, never hidden.
 
+#include "tool/ToolModel.h"
+
 #include <thintool/response/ResponseTypes.h>
-#include <thintool/tool/ToolModel.h>
 
 #include <array>
 #include <string>

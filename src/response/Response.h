@@ -44,9 +44,10 @@
 ///   k·dt²/m stays small (about < 1 for a node alone).
 /// - ResponseKind::None: contacts are reported, nothing is moved.
 
-#include <thintool/detection/Detection.h>
+#include "detection/Detection.h"
+#include "tool/StepContext.h"
+
 #include <thintool/response/ResponseTypes.h>
-#include <thintool/tool/StepContext.h>
 
 #include <vector>
 

@@ -26,8 +26,8 @@
 /// Each contact asks the response to return its soft point to that side, the skin away from the
 /// tool's surface. The paper's checks have nothing to filter here: the side comes from the motion.
 
-#include <thintool/core/StepStamps.h>
-#include <thintool/detection/Detection.h>
+#include "core/StepStamps.h"
+#include "detection/Detection.h"
 
 #include <cstdint>
 #include <vector>
