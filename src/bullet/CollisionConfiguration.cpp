@@ -193,7 +193,8 @@ Tool& CollisionConfiguration::addTool(btCollisionObject& body, const ToolOptions
     fail(error.what());
   }
 
-  auto tool = std::make_unique<Tool>(body, options, std::move(models), std::move(transforms));
+  // The constructor is the configuration's alone: std::make_unique cannot reach it.
+  std::unique_ptr<Tool> tool(new Tool(body, options, std::move(models), std::move(transforms)));
   Tool& registered = *tool;
   registered.state().pass = &m_state->pass;
   m_state->tools.emplace(&body, std::move(tool));

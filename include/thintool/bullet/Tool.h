@@ -152,11 +152,8 @@ struct ToolStepReport {
 };
 
 class CollisionConfiguration;
-
-class SoftBodySolver;
 struct ToolModel;
 namespace detail {
-struct PairState;
 class SoftBodySolverImpl;
 class ToolAlgorithm;
 class SweptProxy;
@@ -166,8 +163,6 @@ struct ToolState;
 /// Created by addTool(); owned by the world's thintool::CollisionConfiguration.
 class THINTOOL_API Tool {
  public:
-  Tool(btCollisionObject& body, const ToolOptions& options, std::vector<ToolModel> pieces,
-       std::vector<Pose> pieceTransforms);
   ~Tool();
   Tool(const Tool&) = delete;
   Tool& operator=(const Tool&) = delete;
@@ -206,6 +201,8 @@ class THINTOOL_API Tool {
   void resetMotion();
 
  private:
+  Tool(btCollisionObject& body, const ToolOptions& options, std::vector<ToolModel> pieces,
+       std::vector<Pose> pieceTransforms);
   friend class detail::ToolAlgorithm;
   friend class detail::SweptProxy;
   friend class detail::SoftBodySolverImpl;
