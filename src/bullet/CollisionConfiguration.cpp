@@ -89,6 +89,10 @@ struct CollisionConfiguration::State {
   std::unique_ptr<CreateFunc> swappedCreateFunc;
   /// Shared by the tools: how far their responses moved soft nodes in the current pass.
   detail::CollisionPass pass;
+
+  /// The registry's part of thintool::addTool and removeTool.
+  Tool& add(btCollisionObject& body, const ToolOptions& options);
+  bool remove(const btCollisionObject& body);
 };
 
 CollisionConfiguration::CollisionConfiguration(const btDefaultCollisionConstructionInfo& info)
@@ -161,14 +165,14 @@ btCollisionAlgorithmCreateFunc* CollisionConfiguration::getCollisionAlgorithmCre
   return btSoftBodyRigidBodyCollisionConfiguration::getCollisionAlgorithmCreateFunc(proxyType0, proxyType1);
 }
 
-Tool& CollisionConfiguration::addTool(btCollisionObject& body, const ToolOptions& requested) {
+Tool& CollisionConfiguration::State::add(btCollisionObject& body, const ToolOptions& requested) {
   ToolOptions options = requested;
   if (options.name.empty()) {
-    options.name = "tool " + std::to_string(m_state->toolsCreated + 1);
+    options.name = "tool " + std::to_string(toolsCreated + 1);
   }
   auto fail = [&options](const std::string& problem) { throw Error("tool '" + options.name + "': " + problem); };
-  if (const Tool* existing = findTool(body)) {
-    fail("this body is already registered, as tool '" + existing->name() + "'");
+  if (const auto existing = tools.find(&body); existing != tools.end()) {
+    fail("this body is already registered, as tool '" + existing->second->name() + "'");
   }
   if (body.getCollisionShape() == nullptr) {
     fail("the body has no collision shape");
@@ -196,21 +200,21 @@ Tool& CollisionConfiguration::addTool(btCollisionObject& body, const ToolOptions
   // The constructor is the configuration's alone: std::make_unique cannot reach it.
   std::unique_ptr<Tool> tool(new Tool(body, options, std::move(models), std::move(transforms)));
   Tool& registered = *tool;
-  registered.state().pass = &m_state->pass;
-  m_state->tools.emplace(&body, std::move(tool));
-  m_state->toolOrder.push_back(&registered);
-  ++m_state->toolsCreated;
+  registered.state().pass = &pass;
+  tools.emplace(&body, std::move(tool));
+  toolOrder.push_back(&registered);
+  ++toolsCreated;
   body.setActivationState(DISABLE_DEACTIVATION);
   return registered;
 }
 
-bool CollisionConfiguration::removeTool(const btCollisionObject& body) {
-  const auto found = m_state->tools.find(&body);
-  if (found == m_state->tools.end()) {
+bool CollisionConfiguration::State::remove(const btCollisionObject& body) {
+  const auto found = tools.find(&body);
+  if (found == tools.end()) {
     return false;
   }
-  m_state->toolOrder.erase(std::find(m_state->toolOrder.begin(), m_state->toolOrder.end(), found->second.get()));
-  m_state->tools.erase(found);
+  toolOrder.erase(std::find(toolOrder.begin(), toolOrder.end(), found->second.get()));
+  tools.erase(found);
   return true;
 }
 
@@ -227,7 +231,7 @@ Tool& addTool(btCollisionWorld& world, btCollisionObject& body, const ToolOption
     const std::string name = options.name.empty() ? std::string("new tool") : options.name;
     throw Error("tool '" + name + "': " + error.what());
   }
-  Tool& tool = configuration->addTool(body, options);
+  Tool& tool = configuration->m_state->add(body, options);
   if (tool.options().swept) {
     tool.state().proxy = new detail::SweptProxy(tool, configuration->m_state->proxies);
     world.addCollisionObject(tool.state().proxy, btBroadphaseProxy::DefaultFilter, btBroadphaseProxy::AllFilter);
@@ -248,7 +252,7 @@ bool removeTool(btCollisionWorld& world, const btCollisionObject& body) {
     delete tool->state().proxy;  // leaves the registry and the tool
   }
   reroutePairs(world, body);
-  return configuration.removeTool(body);
+  return configuration.m_state->remove(body);
 }
 
 Tool* findTool(btCollisionWorld& world, const btCollisionObject& body) {

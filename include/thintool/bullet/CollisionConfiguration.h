@@ -65,8 +65,6 @@ class THINTOOL_API CollisionConfiguration : public btSoftBodyRigidBodyCollisionC
   friend Tool& addTool(btCollisionWorld&, btCollisionObject&, const ToolOptions&);
   friend bool removeTool(btCollisionWorld&, const btCollisionObject&);
   friend void detail::beginCollisionPass(btCollisionWorld&);
-  Tool& addTool(btCollisionObject& body, const ToolOptions& options);
-  bool removeTool(const btCollisionObject& body);
 
   struct CreateFunc;
   struct State;
