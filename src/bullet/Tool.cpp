@@ -16,11 +16,9 @@
 namespace thintool {
 
 namespace detail {
+
 PairState::PairState() = default;
 PairState::~PairState() = default;
-}  // namespace detail
-
-namespace detail {
 
 ToolState::ToolState(btCollisionObject& toolBody, const ToolOptions& toolOptions, std::vector<ToolModel> toolPieces,
                      std::vector<Pose> toolPieceTransforms)
@@ -36,28 +34,6 @@ ToolState::ToolState(btCollisionObject& toolBody, const ToolOptions& toolOptions
 }
 
 ToolState::~ToolState() { delete proxy; }
-
-}  // namespace detail
-
-Tool::Tool(btCollisionObject& body, const ToolOptions& options, std::vector<ToolModel> pieces,
-           std::vector<Pose> pieceTransforms)
-    : m_state(std::make_unique<detail::ToolState>(body, options, std::move(pieces), std::move(pieceTransforms))) {}
-
-Tool::~Tool() = default;
-
-const std::string& Tool::name() const { return m_state->options.name; }
-btCollisionObject& Tool::body() const { return m_state->body; }
-const ToolOptions& Tool::options() const { return m_state->options; }
-Index Tool::pieceCount() const { return static_cast<Index>(m_state->pieces.size()); }
-const ToolModel& Tool::piece(Index i) const { return m_state->pieces[i]; }
-const Pose& Tool::pieceTransform(Index i) const { return m_state->pieceTransforms[i]; }
-
-void Tool::resetMotion() {
-  m_state->jumpNext = true;
-  m_state->separationJump = true;
-}
-
-namespace detail {
 
 void ToolState::trackMotion() {
   const Pose now = toPose(body.getWorldTransform());
@@ -89,22 +65,6 @@ void ToolState::bodyMotion(Pose& outPrevious, Pose& outCurrent) const {
   outCurrent = toPose(body.getWorldTransform());
   outPrevious = motionTracked ? poseBefore : outCurrent;
 }
-
-}  // namespace detail
-
-btRigidBody* Tool::rigidBody() const { return btRigidBody::upcast(&m_state->body); }
-
-btRigidBody* Tool::dynamicBody() const { return m_state->dynamicBody(); }
-
-Index Tool::nodeCount() const {
-  Index count = 0;
-  for (const ToolModel& piece : m_state->pieces) {
-    count += piece.nodeCount();
-  }
-  return count;
-}
-
-namespace detail {
 
 PairState& ToolState::pairState(btSoftBody& softBody, Index piece) {
   for (auto& state : pairs) {
@@ -151,6 +111,36 @@ RestShape& ToolState::restShape(const btSoftBody& softBody) {
 }
 
 }  // namespace detail
+
+Tool::Tool(btCollisionObject& body, const ToolOptions& options, std::vector<ToolModel> pieces,
+           std::vector<Pose> pieceTransforms)
+    : m_state(std::make_unique<detail::ToolState>(body, options, std::move(pieces), std::move(pieceTransforms))) {}
+
+Tool::~Tool() = default;
+
+const std::string& Tool::name() const { return m_state->options.name; }
+btCollisionObject& Tool::body() const { return m_state->body; }
+const ToolOptions& Tool::options() const { return m_state->options; }
+Index Tool::pieceCount() const { return static_cast<Index>(m_state->pieces.size()); }
+const ToolModel& Tool::piece(Index i) const { return m_state->pieces[i]; }
+const Pose& Tool::pieceTransform(Index i) const { return m_state->pieceTransforms[i]; }
+
+void Tool::resetMotion() {
+  m_state->jumpNext = true;
+  m_state->separationJump = true;
+}
+
+btRigidBody* Tool::rigidBody() const { return btRigidBody::upcast(&m_state->body); }
+
+btRigidBody* Tool::dynamicBody() const { return m_state->dynamicBody(); }
+
+Index Tool::nodeCount() const {
+  Index count = 0;
+  for (const ToolModel& piece : m_state->pieces) {
+    count += piece.nodeCount();
+  }
+  return count;
+}
 
 void Tool::captureRestShape(const btSoftBody& softBody) {
   // restShape() captures only a body it has not seen; capture this one again whatever it had.
