@@ -90,6 +90,11 @@ struct CollisionConfiguration::State {
   /// Shared by the tools: how far their responses moved soft nodes in the current pass.
   detail::CollisionPass pass;
 
+  /// The tool registered for body, or nullptr.
+  Tool* find(const btCollisionObject& body) const {
+    const auto found = tools.find(&body);
+    return found == tools.end() ? nullptr : found->second.get();
+  }
   /// The registry's part of thintool::addTool and removeTool.
   Tool& add(btCollisionObject& body, const ToolOptions& options);
   bool remove(const btCollisionObject& body);
@@ -171,8 +176,8 @@ Tool& CollisionConfiguration::State::add(btCollisionObject& body, const ToolOpti
     options.name = "tool " + std::to_string(toolsCreated + 1);
   }
   auto fail = [&options](const std::string& problem) { throw Error("tool '" + options.name + "': " + problem); };
-  if (const auto existing = tools.find(&body); existing != tools.end()) {
-    fail("this body is already registered, as tool '" + existing->second->name() + "'");
+  if (const Tool* existing = find(body)) {
+    fail("this body is already registered, as tool '" + existing->name() + "'");
   }
   if (body.getCollisionShape() == nullptr) {
     fail("the body has no collision shape");
@@ -218,10 +223,7 @@ bool CollisionConfiguration::State::remove(const btCollisionObject& body) {
   return true;
 }
 
-Tool* CollisionConfiguration::findTool(const btCollisionObject& object) const {
-  const auto found = m_state->tools.find(&object);
-  return found == m_state->tools.end() ? nullptr : found->second.get();
-}
+Tool* CollisionConfiguration::findTool(const btCollisionObject& object) const { return m_state->find(object); }
 
 Tool& addTool(btCollisionWorld& world, btCollisionObject& body, const ToolOptions& options) {
   CollisionConfiguration* configuration = nullptr;
