@@ -32,7 +32,7 @@ namespace {
 // A moved node's reaction on the dynamic tool that moved it by displacement, the node having moved
 // at solvedVelocity before. Squeezed between the tool and a body that does not yield (backing, a
 // contact of Bullet's own), the node stops the tool as that body would.
-void reactOnTool(btRigidBody& tool, const btSoftBody& softBody, const btSoftBody::Node& node,
+void reactOnTool(detail::DynamicBody& tool, const btSoftBody& softBody, const btSoftBody::Node& node,
                  const btSoftBody::RContact* backing, const btVector3& displacement, const btVector3& solvedVelocity) {
   if (backing == nullptr || backing->m_cti.m_normal.dot(displacement) >= 0) {
     detail::applyNodeReaction(tool, node.m_x, displacement, node.m_im, softBody.m_sst.isdt, solvedVelocity);
@@ -117,9 +117,9 @@ BodyMotion motionOf(const btSoftBody& softBody, VelocityOf velocityOf) {
 // The dynamic tool that takes the last word's reactions, or nullptr: none when the tool is not
 // dynamic, or when its force model is what reacts on it (ForceSettings::applyToDynamicTool), as for
 // the collision stage's own moves.
-btRigidBody* reactingBody(const Tool& tool) {
-  const ForceSettings& force = tool.options().force;
-  return force.enabled && force.applyToDynamicTool ? nullptr : tool.dynamicBody();
+detail::DynamicBody reactingBody(const detail::ToolState& tool) {
+  const ForceSettings& force = tool.options.force;
+  return force.enabled && force.applyToDynamicTool ? detail::DynamicBody() : tool.dynamic();
 }
 
 // The speed of the tool's fastest corner over the step (m/s).
@@ -487,7 +487,7 @@ void SoftBodySolverImpl::solveConstraints(btScalar timeStep) {
     tool->state().lastWord = LastWordDiagnostics{};
     if (tool->state().options.separation.enabled && isFinite(toPose(tool->body().getWorldTransform()))) {
       tools.push_back(tool);
-      m_dynamicToolsActive = m_dynamicToolsActive || reactingBody(*tool) != nullptr;
+      m_dynamicToolsActive = m_dynamicToolsActive || bool(reactingBody(tool->state()));
     }
   }
   m_stepReach = Aabb{};
@@ -636,6 +636,12 @@ void SoftBodySolverImpl::measureEnergy(btScalar timeStep) {
 }
 
 void SoftBodySolverImpl::predictMotion(btScalar timeStep) {
+  // The step begins here, before the collision pass: the impulses a dynamic tool takes are summed
+  // from now on.
+  for (Tool* tool : m_configuration.tools()) {
+    tool->state().applied = detail::AppliedImpulse{};
+    tool->state().appliedStep = timeStep;
+  }
   for (int s = 0; s < m_softBodySet.size(); ++s) {
     btSoftBody& softBody = *m_softBodySet[s];
     if (!softBody.isActive()) continue;
@@ -934,10 +940,10 @@ void SoftBodySolverImpl::finishSurvey(const NodeSurvey& survey, SoftBodyCache& c
   cache.candidatesHold = cache.candidatesHold && reach <= cache.candidateReach;
 }
 
-void SoftBodySolverImpl::stopAtPinnedNodes(btRigidBody& tool, const ToolModel& piece, const Pose& pieceEnd,
+void SoftBodySolverImpl::stopAtPinnedNodes(detail::DynamicBody& tool, const ToolModel& piece, const Pose& pieceEnd,
                                        Real inverseStep, const SoftBodyCache& cache, const btSoftBody& softBody,
                                        Index& nonFiniteWrites) {
-  const detail::BodyVelocities before(&tool);
+  const detail::BodyVelocities before(tool);
   const auto forEachPinned = [&](const auto& visit) {
     for (const Index id : cache.pinned) {
       if (id < static_cast<Index>(softBody.m_nodes.size())) {
@@ -1089,10 +1095,10 @@ SeparationCounts SoftBodySolverImpl::separatePiece(Tool& tool, const ToolModel& 
   // A dynamic tool takes the moved nodes' reaction, and the body's pinned nodes stop it, near this
   // step's reach or not: a fast tool reaches next step what it does not reach in this one.
   const Real inverseStep = Real(softBody.m_sst.isdt);
-  btRigidBody* dynamicTool = reactingBody(tool);
+  detail::DynamicBody dynamicTool = reactingBody(tool.state());
   if (cache.boundsHold && !grown.overlaps(cache.bounds)) {
-    if (dynamicTool != nullptr) {
-      stopAtPinnedNodes(*dynamicTool, piece, motion.end(), inverseStep, cache, softBody,
+    if (dynamicTool) {
+      stopAtPinnedNodes(dynamicTool, piece, motion.end(), inverseStep, cache, softBody,
                         tool.state().lastWord.nonFiniteWrites);
     }
     return {};
@@ -1140,8 +1146,8 @@ SeparationCounts SoftBodySolverImpl::separatePiece(Tool& tool, const ToolModel& 
   for (const Index node : m_nearNodes) m_isNearNode[node] = 0;
   if (m_patch.vertexCount() == 0) {
     for (Index f : m_patchFaces) m_faceInPatch[f] = 0;
-    if (dynamicTool != nullptr) {
-      stopAtPinnedNodes(*dynamicTool, piece, motion.end(), inverseStep, cache, softBody,
+    if (dynamicTool) {
+      stopAtPinnedNodes(dynamicTool, piece, motion.end(), inverseStep, cache, softBody,
                         tool.state().lastWord.nonFiniteWrites);
     }
     return {};
@@ -1159,7 +1165,7 @@ SeparationCounts SoftBodySolverImpl::separatePiece(Tool& tool, const ToolModel& 
   // tool's own there, whichever separates faster: a contact without bounce. Taking the move itself
   // as velocity, as Bullet's position solve would, turns every correction of the solver's overlap
   // into a kick away from the tool.
-  if (dynamicTool != nullptr) findBackings(softBody);
+  if (dynamicTool) findBackings(softBody);
   const detail::BodyVelocities toolBefore(dynamicTool);
   bool movedAny = false;
   Real largestMove = 0;
@@ -1202,15 +1208,15 @@ SeparationCounts SoftBodySolverImpl::separatePiece(Tool& tool, const ToolModel& 
     detail::checkWrite(positionBefore, node.m_x, tool.state().lastWord.nonFiniteWrites);
     detail::checkWrite(velocityBefore, node.m_v, tool.state().lastWord.nonFiniteWrites);
     movedAny = true;
-    if (dynamicTool != nullptr && node.m_im > 0) {
+    if (dynamicTool && node.m_im > 0) {
       const int backing = m_backingOfNode[id];
-      reactOnTool(*dynamicTool, softBody, node, backing >= 0 ? &softBody.m_rcontacts[backing] : nullptr,
+      reactOnTool(dynamicTool, softBody, node, backing >= 0 ? &softBody.m_rcontacts[backing] : nullptr,
                   displacement, solvedVelocity);
     }
   }
-  if (dynamicTool != nullptr) {
+  if (dynamicTool) {
     toolBefore.check(tool.state().lastWord.nonFiniteWrites);
-    stopAtPinnedNodes(*dynamicTool, piece, motion.end(), inverseStep, cache, softBody,
+    stopAtPinnedNodes(dynamicTool, piece, motion.end(), inverseStep, cache, softBody,
                       tool.state().lastWord.nonFiniteWrites);
     for (int c = 0; c < softBody.m_rcontacts.size(); ++c) {
       m_backingOfNode[static_cast<Index>(softBody.m_rcontacts[c].m_node - &softBody.m_nodes[0])] = -1;
@@ -1221,7 +1227,7 @@ SeparationCounts SoftBodySolverImpl::separatePiece(Tool& tool, const ToolModel& 
   cache.lastWordReach += 2 * largestMove;
   if (movedAny) {
     softBody.activate();
-    if (dynamicTool != nullptr) dynamicTool->activate();
+    if (dynamicTool) dynamicTool.activate();
   }
   return counts;
 }

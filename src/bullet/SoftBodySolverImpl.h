@@ -14,7 +14,6 @@
 #include <array>
 #include <vector>
 
-class btRigidBody;
 class btSoftBody;
 
 namespace thintool {
@@ -23,6 +22,8 @@ class CollisionConfiguration;
 class Tool;
 
 namespace detail {
+
+class DynamicBody;
 
 class SoftBodySolverImpl {
  public:
@@ -162,7 +163,7 @@ class SoftBodySolverImpl {
   void surveyNode(NodeSurvey& survey, SoftBodyCache& cache, int i, const btVector3& x, const btVector3& q, bool pinned);
   void finishSurvey(const NodeSurvey& survey, SoftBodyCache& cache, const btSoftBody& softBody);
   // The soft body's pinned nodes stop the dynamic tool that carries the piece short of them.
-  void stopAtPinnedNodes(btRigidBody& tool, const ToolModel& piece, const Pose& pieceEnd, Real inverseStep,
+  void stopAtPinnedNodes(DynamicBody& tool, const ToolModel& piece, const Pose& pieceEnd, Real inverseStep,
                          const SoftBodyCache& cache, const btSoftBody& softBody, Index& nonFiniteWrites);
   // The soft solve of each active body. A body that tools hold in the solver (their holds among
   // its contacts), that the last word will look at or that the energy guard bounds is solved by

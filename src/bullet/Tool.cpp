@@ -44,7 +44,7 @@ void ToolState::trackMotion() {
   jumpNext = false;
   // A dynamic tool set down by hand moves on from there in the same step: Bullet integrates it
   // after the collision pass, and the last word sweeps that motion from the pose set down.
-  if (separationJump && dynamicBody() != nullptr && isFinite(now)) {
+  if (separationJump && dynamic() && isFinite(now)) {
     separatedPose = now;
     hasSeparatedPose = true;
     separationJump = false;
@@ -56,8 +56,10 @@ btRigidBody* ToolState::dynamicBody() const {
   return rigid != nullptr && !rigid->isStaticOrKinematicObject() ? rigid : nullptr;
 }
 
+DynamicBody ToolState::dynamic() const { return DynamicBody::of(body, jacobianScratch, applied); }
+
 void ToolState::bodyMotion(Pose& outPrevious, Pose& outCurrent) const {
-  if (dynamicBody() != nullptr) {
+  if (dynamic()) {
     outPrevious = toPose(body.getWorldTransform());
     outCurrent = toPose(body.getInterpolationWorldTransform());
     return;
@@ -172,6 +174,12 @@ const ToolStepReport& Tool::report() {
   diagnostics.lastWord.holdNodesShared = t.holdNodesShared;
   t.report.holdWrench.force = t.holdWrench.force;
   t.report.holdWrench.torque = t.holdWrench.torque - cross(bodyPose.translation, t.holdWrench.force);
+  t.report.reaction = Wrench{};
+  if (t.appliedStep > 0) {
+    const Vec3 force = toVec3(t.applied.linear) / Real(t.appliedStep);
+    const Vec3 torque = toVec3(t.applied.angular) / Real(t.appliedStep) - cross(bodyPose.translation, force);
+    if (isFinite(force) && isFinite(torque)) t.report.reaction = Wrench{force, torque};
+  }
 
   for (const auto& statePointer : t.pairs) {
     const detail::PairState& state = *statePointer;

@@ -106,7 +106,7 @@ void makeContactsLast(btSoftBody& softBody) {
 // Writes the corrections into the soft body: the moves, the solver's holds, and for a dynamic tool
 // the reaction. dynamicBody, when not null, is a dynamic tool that takes the moved nodes' reaction.
 // Returns the longest move written (m).
-Real applyResponse(PairState& state, btSoftBody& softBody, btRigidBody* dynamicBody, btScalar timeStep) {
+Real applyResponse(PairState& state, btSoftBody& softBody, DynamicBody dynamicBody, btScalar timeStep) {
   Real longestSquared = 0;
   const btScalar inverseStep = 1 / timeStep;
   const BodyVelocities toolBefore(dynamicBody);
@@ -119,14 +119,14 @@ Real applyResponse(PairState& state, btSoftBody& softBody, btRigidBody* dynamicB
     node.m_x += displacement;
     checkWrite(before, node.m_x, state.nonFiniteWrites);
     state.patch.positions[correction.vertex] += correction.displacement;
-    if (dynamicBody != nullptr && node.m_im > 0) {
+    if (dynamicBody && node.m_im > 0) {
       // The velocity Bullet's solve would have given the node where it was predicted to be.
-      applyNodeReaction(*dynamicBody, node.m_x, displacement, node.m_im, inverseStep,
+      applyNodeReaction(dynamicBody, node.m_x, displacement, node.m_im, inverseStep,
                         (node.m_x - displacement - node.m_q) * inverseStep);
     }
   }
-  if (dynamicBody != nullptr && !state.response.corrections.empty()) {
-    dynamicBody->activate();
+  if (dynamicBody && !state.response.corrections.empty()) {
+    dynamicBody.activate();
   }
   toolBefore.check(state.nonFiniteWrites);
   const auto usable = [](const NodeHold& hold) { return isFinite(hold.normal) && std::isfinite(hold.offset); };
@@ -261,8 +261,8 @@ void ToolAlgorithm::processCollision(const btCollisionObjectWrapper* body0, cons
     step.swept = true;
     processPiece(step, toolWrap);
   }
-  if (btRigidBody* dynamicBody = m_tool.dynamicBody()) {
-    stopAtPinnedNodes(*dynamicBody, softBody, softBody.m_sst.sdt, nullptr);
+  if (DynamicBody dynamicBody = m_tool.state().dynamic()) {
+    stopAtPinnedNodes(dynamicBody, softBody, softBody.m_sst.sdt, nullptr);
   }
 }
 
@@ -443,7 +443,7 @@ void ToolAlgorithm::rememberSweep(PieceStep& step) {
 void ToolAlgorithm::write(PieceStep& step) {
   const ToolOptions& options = m_tool.state().options;
   PairState& state = step.state;
-  btRigidBody* dynamicBody = m_tool.dynamicBody();
+  DynamicBody dynamicBody = m_tool.state().dynamic();
   const bool forceReacts = options.force.enabled && options.force.applyToDynamicTool;
   if (options.response.kind == ResponseKind::Constraint && options.bullet.holdInSolver) {
     computeHolds(step.context(), state.patch, step.swept, state.response,
@@ -452,27 +452,27 @@ void ToolAlgorithm::write(PieceStep& step) {
     // contacts are solved (a pressure body on the ground shook at twice stock's speed), which a
     // tool merely near the body must not do.
     if (!state.response.corrections.empty() &&
-        (options.response.friction.enabled || (dynamicBody != nullptr && forceReacts))) {
+        (options.response.friction.enabled || (dynamicBody && forceReacts))) {
       makeContactsLast(step.softBody);
     }
   }
   const Real moved =
-      applyResponse(state, step.softBody, forceReacts ? nullptr : dynamicBody, step.timeStep);
+      applyResponse(state, step.softBody, forceReacts ? DynamicBody() : dynamicBody, step.timeStep);
   if (m_tool.state().pass != nullptr) {
     m_tool.state().pass->recordMoves(moved);
   }
   if (options.force.enabled) {
-    computeForces(step, forceReacts ? dynamicBody : nullptr);
+    computeForces(step, forceReacts ? dynamicBody : DynamicBody());
   }
   // The soft solver's end-of-step stop at pinned nodes comes after the tool has moved; the
   // reactions above and the tool's own forces come before it moves again, and would otherwise carry
   // it past a pinned node it rests on. The tool is still where the step began: a dynamic tool's
   // sweep starts there, and an unswept piece is taken there.
-  if (dynamicBody != nullptr && !forceReacts) {
+  if (dynamicBody && !forceReacts) {
     state.pinnedStopPose = step.swept ? step.previousPose : step.pose;
     state.stopsAtPinned = true;
     // A swept tool's pieces stop it together once all of them have reacted (processCollision).
-    if (!step.swept) stopAtPinnedNodes(*dynamicBody, step.softBody, step.timeStep, &state);
+    if (!step.swept) stopAtPinnedNodes(dynamicBody, step.softBody, step.timeStep, &state);
   }
 }
 
@@ -480,7 +480,7 @@ void ToolAlgorithm::write(PieceStep& step) {
 // of every pair of the tool with the soft body that stops it this step: a swept tool's pieces stop
 // it together, after every piece has reacted on it. One jaw's reaction turned a pair of jaws into a
 // pinned node that the other jaw's stop had kept them short of (generated seed 29819).
-void ToolAlgorithm::stopAtPinnedNodes(btRigidBody& tool, const btSoftBody& softBody, btScalar timeStep,
+void ToolAlgorithm::stopAtPinnedNodes(DynamicBody& tool, const btSoftBody& softBody, btScalar timeStep,
                                       const PairState* single) {
   const auto forEachPinned = [&](const auto& visit) {
     const auto visitPair = [&](const PairState& state) {
@@ -496,7 +496,7 @@ void ToolAlgorithm::stopAtPinnedNodes(btRigidBody& tool, const btSoftBody& softB
     }
     for (const auto& pair : m_tool.state().pairs) visitPair(*pair);
   };
-  const BodyVelocities before(&tool);
+  const BodyVelocities before(tool);
   stopShortOfPinnedNodes(tool, forEachPinned, Real(1) / Real(timeStep), true);
   // Counted with the soft body's first pair, whichever pieces stopped the tool.
   for (const auto& pair : m_tool.state().pairs) {
@@ -507,7 +507,7 @@ void ToolAlgorithm::stopAtPinnedNodes(btRigidBody& tool, const btSoftBody& softB
   }
 }
 
-void ToolAlgorithm::computeForces(PieceStep& step, btRigidBody* reactingBody) {
+void ToolAlgorithm::computeForces(PieceStep& step, DynamicBody reactingBody) {
   PairState& state = step.state;
   btSoftBody& softBody = step.softBody;
   const ForceSettings& settings = m_tool.state().options.force;
@@ -522,15 +522,14 @@ void ToolAlgorithm::computeForces(PieceStep& step, btRigidBody* reactingBody) {
   state.force.history.resize(static_cast<Index>(softBody.m_faces.size()));
   computeContactForces(step.context(), state.patch, state.detection.contacts,
                        {settings, rest, state.rigidFit}, state.force);
-  if (reactingBody == nullptr) {
+  if (!reactingBody) {
     return;
   }
   const BodyVelocities before(reactingBody);
   for (const FaceForce& face : state.force.faces) {
     if (isFinite(face.force) && isFinite(face.point) && lengthSquared(face.force) > 0) {
-      reactingBody->applyImpulse(toBt(face.force * step.timeStep),
-                                 toBt(face.point) - reactingBody->getCenterOfMassPosition());
-      reactingBody->activate();
+      reactingBody.applyImpulse(toBt(face.force * step.timeStep), toBt(face.point));
+      reactingBody.activate();
     }
   }
   before.check(state.nonFiniteWrites);

@@ -7,12 +7,10 @@
 
 #include <BulletCollision/BroadphaseCollision/btCollisionAlgorithm.h>
 
-class btRigidBody;
-class btSoftBody;
-
 #include <thintool/core/Math.h>
 
 class btCollisionObject;
+class btSoftBody;
 struct btCollisionObjectWrapper;
 
 namespace thintool {
@@ -21,6 +19,7 @@ class Tool;
 
 namespace thintool::detail {
 
+class DynamicBody;
 struct PairState;
 
 class ToolAlgorithm final : public btCollisionAlgorithm {
@@ -62,9 +61,9 @@ class ToolAlgorithm final : public btCollisionAlgorithm {
   void write(PieceStep& step);
   // The dynamic tool stopped short of the pinned nodes of one pair, or of all its pairs with the soft
   // body that stop it this step (single null).
-  void stopAtPinnedNodes(btRigidBody& tool, const btSoftBody& softBody, btScalar timeStep, const PairState* single);
+  void stopAtPinnedNodes(DynamicBody& tool, const btSoftBody& softBody, btScalar timeStep, const PairState* single);
   // The force model on the piece's contacts; reactingBody, when not null, receives the force.
-  void computeForces(PieceStep& step, btRigidBody* reactingBody);
+  void computeForces(PieceStep& step, DynamicBody reactingBody);
 
   Tool& m_tool;
   Mode m_mode;

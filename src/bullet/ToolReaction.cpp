@@ -24,7 +24,8 @@ constexpr int kMostSamples = 64;
 }  // namespace
 
 btScalar applyNodeReaction(btRigidBody& tool, const btVector3& nodePosition, const btVector3& displacement,
-                           btScalar inverseNodeMass, btScalar inverseStep, const btVector3& nodeVelocity) {
+                           btScalar inverseNodeMass, btScalar inverseStep, const btVector3& nodeVelocity,
+                           AppliedImpulse* applied) {
   const btScalar distance = displacement.length();
   if (!(distance > 0) || !std::isfinite(distance) || !(inverseNodeMass >= 0)) {
     return 0;
@@ -47,11 +48,12 @@ btScalar applyNodeReaction(btRigidBody& tool, const btVector3& nodePosition, con
     return 0;
   }
   tool.applyImpulse(direction * -impulse, arm);
+  if (applied != nullptr) applied->add(direction * -impulse, nodePosition);
   return impulse;
 }
 
 btScalar stopShortOfPinnedNode(btRigidBody& tool, const ToolModel& piece, const Pose& pieceNow, const Vec3& node,
-                               Real inverseStep, bool forcesPending) {
+                               Real inverseStep, bool forcesPending, AppliedImpulse* applied) {
   const btScalar step = btScalar(1 / inverseStep);
   const btVector3 at = toBt(node);
   const btVector3 arm = at - tool.getCenterOfMassPosition();
@@ -73,8 +75,8 @@ btScalar stopShortOfPinnedNode(btRigidBody& tool, const ToolModel& piece, const 
   const Real gap = outsideDistance(piece.planes, pieceNow.applyInverse(node), &plane);
   const btVector3 outward = toBt(pieceNow.applyToDirection(piece.planes[plane].normal));
   const btVector3 pending = pendingLinear + pendingAngular.cross(arm);
-  btScalar impulse =
-      applyNodeReaction(tool, at, outward, 0, btScalar(inverseStep), outward * btScalar(gap * inverseStep) - pending);
+  btScalar impulse = applyNodeReaction(tool, at, outward, 0, btScalar(inverseStep),
+                                       outward * btScalar(gap * inverseStep) - pending, applied);
 
   // A turning tool's point does not move along its velocity: a 0.5 m plate turning at 1 rad/s
   // strays 0.1 mm from it in a 50 Hz step. Where the tool will stand after the step, integrated as
@@ -113,9 +115,48 @@ btScalar stopShortOfPinnedNode(btRigidBody& tool, const ToolModel& piece, const 
     const btVector3 endOutward =
         bodyEnd.getBasis() * (bodyNow.getBasis().transpose() * toBt(pieceNow.applyToDirection(piece.planes[plane].normal)));
     const btVector3 closing = tool.getVelocityInLocalPoint(arm) - endOutward * btScalar(depth * inverseStep);
-    impulse += applyNodeReaction(tool, at, endOutward, 0, btScalar(inverseStep), closing);
+    impulse += applyNodeReaction(tool, at, endOutward, 0, btScalar(inverseStep), closing, applied);
   }
   return impulse;
+}
+
+btScalar applyNodeReaction(DynamicBody& tool, const btVector3& nodePosition, const btVector3& displacement,
+                           btScalar inverseNodeMass, btScalar inverseStep, const btVector3& nodeVelocity) {
+  if (btRigidBody* rigid = tool.rigid()) {
+    return applyNodeReaction(*rigid, nodePosition, displacement, inverseNodeMass, inverseStep, nodeVelocity,
+                             tool.applied());
+  }
+  const btScalar distance = displacement.length();
+  if (!(distance > 0) || !std::isfinite(distance) || !(inverseNodeMass >= 0)) {
+    return 0;
+  }
+  const btVector3 direction = displacement / distance;
+  const DynamicBody::Row row = tool.row(nodePosition, direction);
+  const btScalar inverseReducedMass = inverseNodeMass + row.inverseMass;
+  if (!(inverseReducedMass > 0) || !(row.inverseMass > 0)) {
+    return 0;  // the link cannot move along the move: nothing to exchange
+  }
+  const btScalar closing = row.speed - nodeVelocity.dot(direction);
+  btScalar impulse = std::max(btScalar(0), closing) / inverseReducedMass;
+  if (inverseNodeMass > 0) {
+    impulse = std::min(impulse, distance * inverseStep / inverseNodeMass);
+  }
+  if (!(impulse > 0) || !std::isfinite(impulse)) {
+    return 0;
+  }
+  tool.applyAlongRow(-impulse);
+  return impulse;
+}
+
+btScalar stopShortOfPinnedNode(DynamicBody& tool, const ToolModel& piece, const Pose& pieceNow, const Vec3& node,
+                               Real inverseStep, bool forcesPending) {
+  if (btRigidBody* rigid = tool.rigid()) {
+    return stopShortOfPinnedNode(*rigid, piece, pieceNow, node, inverseStep, forcesPending, tool.applied());
+  }
+  Index plane = 0;
+  const Real gap = outsideDistance(piece.planes, pieceNow.applyInverse(node), &plane);
+  const btVector3 outward = toBt(pieceNow.applyToDirection(piece.planes[plane].normal));
+  return applyNodeReaction(tool, toBt(node), outward, 0, btScalar(inverseStep), outward * btScalar(gap * inverseStep));
 }
 
 }  // namespace thintool::detail

@@ -10,6 +10,7 @@
 // cap a tool lighter at that point than the node (a needle about its own axis, a light blade) is
 // sent back faster than it came, and the next step's larger moves send it back faster still.
 
+#include "DynamicBody.h"
 #include "tool/ToolModel.h"
 
 #include <thintool/core/Math.h>
@@ -25,7 +26,14 @@ namespace thintool::detail {
 /// displacement (m) to nodePosition in a step of inverseStep (1/s): the node's change of momentum,
 /// displacement × inverseStep / inverseNodeMass, but no more than the inelastic exchange along the
 /// move. Returns the impulse applied (N s, along -displacement).
+/// applied, when not null, sums the impulse.
 btScalar applyNodeReaction(btRigidBody& tool, const btVector3& nodePosition, const btVector3& displacement,
+                           btScalar inverseNodeMass, btScalar inverseStep, const btVector3& nodeVelocity,
+                           AppliedImpulse* applied = nullptr);
+
+/// applyNodeReaction on either kind of dynamic body: a rigid body as above; a multibody link by the
+/// same rule, with the link's speed and effective mass along the move from its Jacobian.
+btScalar applyNodeReaction(DynamicBody& tool, const btVector3& nodePosition, const btVector3& displacement,
                            btScalar inverseNodeMass, btScalar inverseStep, const btVector3& nodeVelocity);
 
 /// A node that cannot give way (inverse mass 0) at node (m, world) stops tool, whose piece is at
@@ -37,6 +45,12 @@ btScalar applyNodeReaction(btRigidBody& tool, const btVector3& nodePosition, con
 /// edge. forcesPending: the tool's accumulated force and torque are yet to act over that step (in
 /// the collision pass, before Bullet's solver adds them). Returns the impulse applied (N s).
 btScalar stopShortOfPinnedNode(btRigidBody& tool, const ToolModel& piece, const Pose& pieceNow, const Vec3& node,
+                               Real inverseStep, bool forcesPending, AppliedImpulse* applied = nullptr);
+
+/// stopShortOfPinnedNode for either kind of dynamic body. A multibody link gets the speculative
+/// contact alone: its pose at the step's end is the multibody's to integrate, with its joints, and
+/// its pending forces act through them, so neither is predicted here.
+btScalar stopShortOfPinnedNode(DynamicBody& tool, const ToolModel& piece, const Pose& pieceNow, const Vec3& node,
                                Real inverseStep, bool forcesPending);
 
 /// stopShortOfPinnedNode at every pinned node forEachPinned(visit) visits, visit(piece, pieceNow,
@@ -44,7 +58,7 @@ btScalar stopShortOfPinnedNode(btRigidBody& tool, const ToolModel& piece, const 
 /// or of another piece of the tool: the nodes are swept until no stop applies more than a settled
 /// impulse, at most eight times.
 template <typename ForEachPinned>
-void stopShortOfPinnedNodes(btRigidBody& tool, const ForEachPinned& forEachPinned, Real inverseStep,
+void stopShortOfPinnedNodes(DynamicBody& tool, const ForEachPinned& forEachPinned, Real inverseStep,
                             bool forcesPending) {
   constexpr int kMostSweeps = 8;
   constexpr btScalar kSettledImpulse = btScalar(1e-7);  // N s

@@ -6,6 +6,7 @@
 // view of the motion and the report it is building. The glue's stages reach it through
 // Tool::state().
 
+#include "DynamicBody.h"
 #include "PairState.h"
 #include "detection/SweptDetection.h"
 #include "force/ContactForce.h"
@@ -31,6 +32,9 @@ struct ToolState {
 
   /// The body when it is a dynamic btRigidBody, which takes the tissue's reaction; else null.
   btRigidBody* dynamicBody() const;
+  /// The body when the tissue's reaction moves it, a dynamic btRigidBody or a multibody's link;
+  /// else empty.
+  DynamicBody dynamic() const;
   PairState& pairState(btSoftBody& softBody, Index piece);
   /// The soft body's rest shape, captured now if it has none or its node count changed.
   RestShape& restShape(const btSoftBody& softBody);
@@ -69,6 +73,11 @@ struct ToolState {
   bool hasSeparatedPose = false;
   bool separationJump = false;
   LastWordDiagnostics lastWord;
+  mutable JacobianScratch jacobianScratch;  // a multibody link's reactions
+  /// The impulses ThinTool applied to the dynamic tool since the soft-body solver began this step
+  /// (SoftBodySolver::predictMotion), and that step's length (s; 0 before the first).
+  mutable AppliedImpulse applied;
+  btScalar appliedStep = 0;
   Wrench holdWrench;  // this step's, torque about the world's origin
   Index holdNodesShared = 0;
   Pose lastFiniteBodyPose;  // the report's frame when the body's transform is not finite

@@ -2,6 +2,8 @@
 // Copyright (c) 2026 The ThinTool developers
 #include "WriteCheck.h"
 
+#include "DynamicBody.h"
+
 #include <thintool/core/Assert.h>
 
 #include <BulletDynamics/Dynamics/btRigidBody.h>
@@ -28,7 +30,18 @@ BodyVelocities::BodyVelocities(const btRigidBody* body) : m_body(body) {
   m_angular = body->getAngularVelocity();
 }
 
+BodyVelocities::BodyVelocities(const DynamicBody& body) : BodyVelocities(body.rigid()) {
+  if (body.rigid() != nullptr || !body) return;
+  m_link = &body;
+  m_linkFinite = body.velocitiesFinite();
+}
+
 void BodyVelocities::check(Index& count) const {
+  if (m_link != nullptr) {
+    const bool madeNonFinite = m_linkFinite && !m_link->velocitiesFinite();
+    THINTOOL_ASSERT(!madeNonFinite);
+    count += madeNonFinite ? 1 : 0;
+  }
   if (m_body == nullptr) return;
   checkWrite(m_linear, m_body->getLinearVelocity(), count);
   checkWrite(m_angular, m_body->getAngularVelocity(), count);

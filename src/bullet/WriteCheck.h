@@ -17,17 +17,22 @@ class btRigidBody;
 
 namespace thintool::detail {
 
+class DynamicBody;
+
 /// Counts in count a write that turned before, a finite value, into after, one that is not.
 void checkWrite(const btVector3& before, const btVector3& after, Index& count);
 
-/// A rigid body's velocities before a write, to check them after it; no body, nothing to check.
+/// A dynamic tool's velocities before a write, to check them after it; no body, nothing to check.
 class BodyVelocities {
  public:
   explicit BodyVelocities(const btRigidBody* body);
+  explicit BodyVelocities(const DynamicBody& body);
   void check(Index& count) const;
 
  private:
-  const btRigidBody* m_body;
+  const btRigidBody* m_body = nullptr;
+  const DynamicBody* m_link = nullptr;  // a multibody link: its joint velocities, checked together
+  bool m_linkFinite = true;
   btVector3 m_linear{0, 0, 0};
   btVector3 m_angular{0, 0, 0};
 };

@@ -75,14 +75,16 @@ class THINTOOL_API CollisionConfiguration : public btSoftBodyRigidBodyCollisionC
 };
 
 /// Registers body as a thin tool of world, whose dispatcher must have been built with a
-/// thintool::CollisionConfiguration: a btRigidBody (static, kinematic or dynamic), or a plain
-/// btCollisionObject, which is static or moved by the program like a kinematic body. Builds the
+/// thintool::CollisionConfiguration: a btRigidBody (static, kinematic or dynamic), a link of a
+/// btMultiBody (btMultiBodyLinkCollider; dynamic where its joints or its free base let it move), or
+/// a plain btCollisionObject, which is static or moved by the program like a kinematic body. Builds the
 /// tool model from the body's shape: btBoxShape,
 /// btConvexHullShape, any other convex shape through the hull of its support points, and each
 /// convex child of a btCompoundShape. The body stays awake (DISABLE_DEACTIVATION), since a
 /// sleeping tool's pairs are not processed. A kinematic tool is met at the pose of the step's end,
 /// as its motion state gave it; a dynamic tool at its pose at the start of the step, as Bullet's
-/// stock handler meets it, and it receives the tissue's reaction as impulses. Throws
+/// stock handler meets it, and it receives the tissue's reaction as impulses (a link through its
+/// multibody's joints; ToolStepReport::reaction sums them). Throws
 /// thintool::Error naming the tool and the problem.
 THINTOOL_API Tool& addTool(btCollisionWorld& world, btCollisionObject& body,
                            const ToolOptions& options = ToolOptions());

@@ -147,6 +147,12 @@ struct ToolStepReport {
   /// over the step. Most of a grasped body's weight reaches a jaw this way, not through wrench.
   /// Measured in a world whose soft-body solver is a thintool::SoftBodySolver; zero elsewhere.
   Wrench holdWrench;
+  /// Force (N) and torque about the tool body's origin (N·m) of the impulses ThinTool applied to a
+  /// dynamic tool in the step (the moved nodes' reactions, the pinned nodes' stops, and the force
+  /// model's when it reacts on the tool), over the step: the tissue's load as the tool's motion
+  /// took it. Zero for a static or kinematic tool, and in a world whose soft-body solver is not a
+  /// thintool::SoftBodySolver.
+  Wrench reaction;
   /// The tissue's force on the tool by the force model (Hunt–Crossley by default).
   ToolForce contactForce;
 };
@@ -172,7 +178,8 @@ class THINTOOL_API Tool {
   /// The body as a btRigidBody, or null for a plain btCollisionObject (a static tool, or one the
   /// program moves).
   btRigidBody* rigidBody() const;
-  /// The body when it is a dynamic btRigidBody, which takes the tissue's reaction; else null.
+  /// The body when it is a dynamic btRigidBody, which takes the tissue's reaction; else null (a
+  /// dynamic multibody link takes it too, through its multibody's joints).
   btRigidBody* dynamicBody() const;
   const ToolOptions& options() const;
 
