@@ -3,6 +3,7 @@
 #include "Runner.h"
 
 #include <SoftBallScene.h>
+#include <TetraBlock.h>
 
 #include <thintool/bullet/Convert.h>
 #include <thintool/core/Error.h>
@@ -84,107 +85,6 @@ struct World {
   }
 };
 
-// Runs f with the process's standard output sent to /dev/null: Bullet's CreateFromTetGenData
-// prints its node, link, face and tetrahedron counts there, into the tools' own output.
-template <typename F>
-auto withQuietStdout(F f) {
-  std::fflush(stdout);
-  const int saved = dup(STDOUT_FILENO);
-  const int null = open("/dev/null", O_WRONLY);
-  if (saved >= 0 && null >= 0) dup2(null, STDOUT_FILENO);
-  auto result = f();
-  std::fflush(stdout);
-  if (saved >= 0) {
-    dup2(saved, STDOUT_FILENO);
-    close(saved);
-  }
-  if (null >= 0) close(null);
-  return result;
-}
-
-// A box of tetrahedra, edge soft.sheetSize, soft.tetraCells cubes a side, each cube cut into six
-// tetrahedra round its main diagonal (Kuhn's subdivision: every cube cut the same way, so
-// neighbours share their faces' diagonals). Built through TetGen's .node and .ele text, which
-// CreateFromTetGenData reads with links along the tetrahedra's edges; it ignores faces, so the
-// surface (the faces that belong to one tetrahedron only, wound outward for the pressure) is
-// appended here.
-btSoftBody* makeTetraBox(const SoftBodySpec& soft, btSoftBodyWorldInfo& info) {
-  const int cells = soft.tetraCells;
-  if (cells < 1) throw Error("scene: a tetra box needs at least one cell a side");
-  const int side = cells + 1;
-  auto nodeIndex = [side](int i, int j, int k) { return (k * side + j) * side + i; };
-  std::vector<Vec3> positions;
-  std::string nodeText = std::to_string(side * side * side) + " 3 0 0\n";
-  for (int k = 0; k < side; ++k) {
-    for (int j = 0; j < side; ++j) {
-      for (int i = 0; i < side; ++i) {
-        const Vec3 p = soft.centre + Vec3{i - cells / 2.0, j - cells / 2.0, k - cells / 2.0} * (soft.sheetSize / cells);
-        positions.push_back(p);
-        char line[160];
-        std::snprintf(line, sizeof line, "%d %.9g %.9g %.9g\n", nodeIndex(i, j, k), p.x, p.y, p.z);
-        nodeText += line;
-      }
-    }
-  }
-  std::vector<std::array<int, 4>> tetras;
-  static constexpr int kAxisOrders[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-  for (int k = 0; k < cells; ++k) {
-    for (int j = 0; j < cells; ++j) {
-      for (int i = 0; i < cells; ++i) {
-        for (const auto& order : kAxisOrders) {
-          int corner[3] = {i, j, k};
-          std::array<int, 4> tetra{};
-          tetra[0] = nodeIndex(corner[0], corner[1], corner[2]);
-          for (int step = 0; step < 3; ++step) {
-            ++corner[order[step]];
-            tetra[std::size_t(step) + 1] = nodeIndex(corner[0], corner[1], corner[2]);
-          }
-          tetras.push_back(tetra);
-        }
-      }
-    }
-  }
-  std::string eleText = std::to_string(tetras.size()) + " 4 0\n";
-  for (std::size_t t = 0; t < tetras.size(); ++t) {
-    eleText += std::to_string(t) + " " + std::to_string(tetras[t][0]) + " " + std::to_string(tetras[t][1]) + " " +
-               std::to_string(tetras[t][2]) + " " + std::to_string(tetras[t][3]) + "\n";
-  }
-  btSoftBody* body = withQuietStdout([&] {
-    return btSoftBodyHelpers::CreateFromTetGenData(info, eleText.c_str(), nullptr, nodeText.c_str(), true, true, false);
-  });
-
-  // Each tetrahedron's face with the corner opposite it; a face met once is on the surface.
-  struct FaceUse {
-    std::array<int, 3> corners;
-    int opposite;
-    int uses;
-  };
-  std::map<std::array<int, 3>, FaceUse> faces;
-  for (const std::array<int, 4>& t : tetras) {
-    for (int skip = 0; skip < 4; ++skip) {
-      std::array<int, 3> corners{};
-      int n = 0;
-      for (int c = 0; c < 4; ++c) {
-        if (c != skip) corners[std::size_t(n++)] = t[std::size_t(c)];
-      }
-      std::array<int, 3> key = corners;
-      std::sort(key.begin(), key.end());
-      auto [it, inserted] = faces.try_emplace(key, FaceUse{corners, t[std::size_t(skip)], 0});
-      ++it->second.uses;
-    }
-  }
-  for (const auto& [key, face] : faces) {
-    if (face.uses != 1) continue;
-    std::array<int, 3> c = face.corners;
-    const Vec3& a = positions[std::size_t(c[0])];
-    const Vec3 normal = cross(positions[std::size_t(c[1])] - a, positions[std::size_t(c[2])] - a);
-    if (dot(normal, positions[std::size_t(face.opposite)] - a) > 0) std::swap(c[1], c[2]);
-    body->appendFace(c[0], c[1], c[2]);
-    for (int e = 0; e < 3; ++e) body->appendLink(c[std::size_t(e)], c[std::size_t((e + 1) % 3)], nullptr, true);
-  }
-  return body;
-}
-
 btSoftBody* makeSoftBody(const SceneSpec& scene, btSoftBodyWorldInfo& info) {
   const SoftBodySpec& soft = scene.soft;
   switch (soft.mesh) {
@@ -205,7 +105,8 @@ btSoftBody* makeSoftBody(const SceneSpec& scene, btSoftBodyWorldInfo& info) {
                                                   int(soft.objMesh.triangles.size()));
     }
     case SoftBodySpec::Mesh::Tetra:
-      return makeTetraBox(soft, info);
+      return scenes::createTetraBlock(info, soft.centre, Vec3{soft.sheetSize, soft.sheetSize, soft.sheetSize},
+                                      {soft.tetraCells, soft.tetraCells, soft.tetraCells});
     case SoftBodySpec::Mesh::Sheet:
       break;
   }
