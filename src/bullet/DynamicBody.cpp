@@ -6,6 +6,8 @@
 #include <BulletDynamics/Featherstone/btMultiBody.h>
 #include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
 
+#include <LinearMath/btTransformUtil.h>
+
 #include <cmath>
 
 namespace thintool::detail {
@@ -83,6 +85,69 @@ void DynamicBody::applyImpulse(const btVector3& impulse, const btVector3& point)
   const btScalar magnitude = impulse.length();
   if (!(magnitude > 0) || !std::isfinite(magnitude)) return;
   if (row(point, impulse / magnitude).inverseMass > 0) applyAlongRow(magnitude);
+}
+
+void DynamicBody::applyMomentImpulse(const btVector3& linear, const btVector3& angular) {
+  if (!std::isfinite(linear.length2()) || !std::isfinite(angular.length2())) return;
+  if (m_applied != nullptr) {
+    m_applied->linear += linear;
+    m_applied->angular += angular;
+  }
+  if (m_rigid != nullptr) {
+    m_rigid->applyCentralImpulse(linear);
+    m_rigid->applyTorqueImpulse(angular - m_rigid->getCenterOfMassPosition().cross(linear));
+    return;
+  }
+  if (m_link == nullptr) return;
+  const btVector3 centre = m_link->getWorldTransform().getOrigin();
+  const btVector3 torque = angular - centre.cross(linear);
+  AppliedImpulse* applied = m_applied;
+  m_applied = nullptr;  // summed above, whole
+  applyImpulse(linear, centre);
+  const btScalar magnitude = torque.length();
+  if (magnitude > 0) {
+    const btMultiBody& multiBody = *m_link->m_multiBody;
+    JacobianScratch& s = *m_scratch;
+    const int size = 6 + multiBody.getNumDofs();
+    s.jacobian.resize(size);
+    s.velocityChange.resize(size);
+    multiBody.fillConstraintJacobianMultiDof(m_link->m_link, centre, torque / magnitude, btVector3(0, 0, 0),
+                                             &s.jacobian[0], s.reals, s.vectors, s.matrices);
+    multiBody.calcAccelerationDeltasMultiDof(&s.jacobian[0], &s.velocityChange[0], s.reals, s.vectors);
+    bool finite = true;
+    for (int i = 0; i < size; ++i) finite = finite && std::isfinite(s.velocityChange[i]);
+    if (finite) m_link->m_multiBody->applyDeltaVeeMultiDof(&s.velocityChange[0], magnitude);
+  }
+  m_applied = applied;
+}
+
+bool DynamicBody::predictLinkPose(btScalar timeStep, btTransform& outPose) {
+  if (m_link == nullptr) return false;
+  const btMultiBody& multiBody = *m_link->m_multiBody;
+  const btTransform& now = m_link->getWorldTransform();
+  const int size = 6 + multiBody.getNumDofs();
+  JacobianScratch& s = *m_scratch;
+  s.jacobian.resize(size);
+  const btScalar* velocities = multiBody.getVelocityVector();
+  // Each component of the link frame's velocity is a Jacobian row times the joint velocities.
+  const auto along = [&](const btVector3& angular, const btVector3& linear) {
+    multiBody.fillConstraintJacobianMultiDof(m_link->m_link, now.getOrigin(), angular, linear, &s.jacobian[0], s.reals,
+                                             s.vectors, s.matrices);
+    btScalar speed = 0;
+    for (int i = 0; i < size; ++i) speed += s.jacobian[i] * velocities[i];
+    return speed;
+  };
+  const btVector3 zero(0, 0, 0);
+  const btVector3 axes[3] = {btVector3(1, 0, 0), btVector3(0, 1, 0), btVector3(0, 0, 1)};
+  btVector3 linear;
+  btVector3 angular;
+  for (int a = 0; a < 3; ++a) {
+    linear[a] = along(zero, axes[a]);
+    angular[a] = along(axes[a], zero);
+  }
+  if (!std::isfinite(linear.length2()) || !std::isfinite(angular.length2())) return false;
+  btTransformUtil::integrateTransform(now, linear, angular, timeStep, outPose);
+  return true;
 }
 
 void DynamicBody::activate() {

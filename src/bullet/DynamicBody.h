@@ -15,6 +15,7 @@
 
 #include <LinearMath/btAlignedObjectArray.h>
 #include <LinearMath/btMatrix3x3.h>
+#include <LinearMath/btTransform.h>
 #include <LinearMath/btVector3.h>
 
 class btCollisionObject;
@@ -72,6 +73,13 @@ class DynamicBody {
   void applyAlongRow(btScalar impulse);
   /// Applies impulse (N s, world) at point (m, world).
   void applyImpulse(const btVector3& impulse, const btVector3& point);
+  /// Applies the impulse linear (N s, world) together with angular, the moment of the impulses it
+  /// sums about the world's origin (N m s): a rigid body's linear and angular momenta change by
+  /// them; a link takes linear at its centre of mass and the rest as an angular impulse.
+  void applyMomentImpulse(const btVector3& linear, const btVector3& angular);
+  /// A multibody link's pose after timeStep (s) at its present velocities, integrated as Bullet
+  /// integrates a rigid body's; false for a rigid body (Bullet predicts its own) or an empty view.
+  bool predictLinkPose(btScalar timeStep, btTransform& outPose);
   /// Wakes the body (and a multibody's links) so that Bullet integrates what was applied.
   void activate();
   /// Whether every velocity of the body is finite.

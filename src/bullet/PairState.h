@@ -78,6 +78,11 @@ struct PairState {
   /// referring to holdBodies[k] (the soft solver checks that before it reads them).
   int firstHold = 0;
   int holdCount = 0;
+  /// With friction: the tool surface's displacement over the step at each hold's node (world), and
+  /// the pair's coefficients, for the soft solver's friction at the holds. Empty without friction.
+  std::vector<Vec3> holdSurfaceMoves;
+  Real holdStaticFriction = 0;
+  Real holdKineticFriction = 0;
 
   // Results of the latest step.
   DetectionResult detection;  ///< the contacts, counters and excluded nodes, with detection's scratch

@@ -48,12 +48,15 @@ void reactOnTool(detail::DynamicBody& tool, const btSoftBody& softBody, const bt
 // Adds to a tool's hold wrench (torque about the world's origin) the force of a hold that undid
 // moveUndone of the node's motion in a contact stage: the hold's impulse is m·moveUndone/dt, the
 // force over the step that impulse over dt.
-void addHoldForce(Wrench& wrench, const btSoftBody::Node& node, const btVector3& moveUndone, double inverseStepSquared) {
+void addHoldForce(detail::ToolState& tool, const btSoftBody::Node& node, const btVector3& moveUndone,
+                  double inverseStepSquared) {
   if (!(node.m_im > 0)) return;
   const Vec3 force = toVec3(moveUndone) * (inverseStepSquared / double(node.m_im));
   if (!isFinite(force)) return;
-  wrench.force += force;
-  wrench.torque += cross(toVec3(node.m_x), force);
+  tool.holdWrench.force += force;
+  tool.holdWrench.torque += cross(toVec3(node.m_x), force);
+  // The same push as an impulse, m·moveUndone/dt, for a dynamic tool to take after the solve.
+  tool.holdImpulse.add(toBt(force / std::sqrt(inverseStepSquared)), node.m_x);
 }
 
 // Everything the piece can reach during the step: its boxes at the arc's samples, grown by how far
@@ -264,6 +267,13 @@ bool SoftBodySolverImpl::collectHolds(btSoftBody& body) {
         if (entry < 0) {
           entry = static_cast<int>(m_held.size());
           m_held.push_back({node, tool, false, false, btVector3(0, 0, 0), btVector3(0, 0, 0)});
+          HeldNode& added = m_held.back();
+          if (static_cast<std::size_t>(k) < state.holdSurfaceMoves.size() && contact.m_c3 > 0) {
+            added.staticFriction = btScalar(state.holdStaticFriction);
+            added.kineticFriction = btScalar(state.holdKineticFriction);
+            added.normal = contact.m_cti.m_normal;
+            added.surfaceMove = toBt(state.holdSurfaceMoves[static_cast<std::size_t>(k)]);
+          }
         } else if (m_held[static_cast<std::size_t>(entry)].tool != tool) {
           m_held[static_cast<std::size_t>(entry)].severalTools = true;
         }
@@ -316,7 +326,27 @@ void SoftBodySolverImpl::replaySharedHolds(btSoftBody& body, double inverseStepS
     const btVector3 impulse = contact.m_c0 * (relative - tangential * contact.m_c3 + normal * (depth * contact.m_c4));
     const btVector3 move = impulse * contact.m_c2;
     held.replayed -= move;
-    addHoldForce(shared.tool->state().holdWrench, node, move, inverseStepSquared);
+    addHoldForce(shared.tool->state(), node, move, inverseStepSquared);
+  }
+}
+
+void SoftBodySolverImpl::applyHoldFriction(btSoftBody& body, double inverseStepSquared) {
+  for (const HeldNode& held : m_held) {
+    if (held.severalTools || held.bulletContact || !(held.staticFriction > 0 || held.kineticFriction > 0)) continue;
+    btSoftBody::Node& node = body.m_nodes[held.node];
+    const btScalar pushed = (node.m_x - held.before).dot(held.normal);
+    if (!(pushed > 0)) continue;  // no normal force in this stage: no friction
+    const btVector3 relative = node.m_x - node.m_q - held.surfaceMove;
+    const btVector3 tangential = relative - held.normal * relative.dot(held.normal);
+    const btScalar slip = tangential.length();
+    if (!(slip > 0) || !std::isfinite(slip)) continue;
+    const btVector3 move = slip <= held.staticFriction * pushed
+                               ? -tangential
+                               : tangential * -btMin(btScalar(1), held.kineticFriction * pushed / slip);
+    const btVector3 before = node.m_x;
+    node.m_x += move;
+    detail::checkWrite(before, node.m_x, held.tool->state().lastWord.nonFiniteWrites);
+    addHoldForce(held.tool->state(), node, -move, inverseStepSquared);
   }
 }
 
@@ -399,9 +429,10 @@ void SoftBodySolverImpl::solveInStages(btSoftBody& body, btScalar longestMove) {
         for (const HeldNode& held : m_held) {
           const btSoftBody::Node& node = body.m_nodes[held.node];
           if (held.severalTools || held.bulletContact) continue;
-          addHoldForce(held.tool->state().holdWrench, node, held.before - node.m_x, inverseStepSquared);
+          addHoldForce(held.tool->state(), node, held.before - node.m_x, inverseStepSquared);
         }
         if (!m_sharedHolds.empty()) replaySharedHolds(body, inverseStepSquared);
+        applyHoldFriction(body, inverseStepSquared);
       }
     }
     const btScalar velocityFactor = body.m_sst.isdt * (1 - config.kDP);
@@ -476,6 +507,7 @@ void SoftBodySolverImpl::solveConstraints(btScalar timeStep) {
   const auto measureEnd = Clock::now();
   for (Tool* tool : m_configuration.tools()) {
     tool->state().holdWrench = Wrench{};
+    tool->state().holdImpulse = detail::AppliedImpulse{};
     tool->state().holdNodesShared = 0;
   }
   // The tools whose last word runs, and where their pieces reach, before Bullet's solve, which
@@ -502,6 +534,18 @@ void SoftBodySolverImpl::solveConstraints(btScalar timeStep) {
   m_hasStepReach = !tools.empty() && isFinite(m_stepReach.min) && isFinite(m_stepReach.max);
   solveSoftBodies();
   ++m_step;
+  // A hold pushed its node with the tool's surface as if the tool could not give way; a dynamic
+  // tool takes that push back, as the impulse its holds gave over the solve, before the last word's
+  // reactions and stops read its velocity.
+  for (Tool* tool : m_configuration.tools()) {
+    detail::ToolState& state = tool->state();
+    detail::DynamicBody body = reactingBody(state);
+    if (!body || (state.holdImpulse.linear.isZero() && state.holdImpulse.angular.isZero())) continue;
+    const detail::BodyVelocities before(body);
+    body.applyMomentImpulse(state.holdImpulse.linear, state.holdImpulse.angular);
+    body.activate();
+    before.check(state.lastWord.nonFiniteWrites);
+  }
   // One piece's moves can push soft features into another (two jaws, two tools): the pieces take
   // turns until a pass moves nothing, or a pass had a single piece near soft features. Pieces
   // still pushing faces into each other after the last pass leave them to the last resort, which

@@ -165,6 +165,10 @@ class SoftBodySolverImpl {
   // The soft body's pinned nodes stop the dynamic tool that carries the piece short of them.
   void stopAtPinnedNodes(DynamicBody& tool, const ToolModel& piece, const Pose& pieceEnd, Real inverseStep,
                          const SoftBodyCache& cache, const btSoftBody& softBody, Index& nonFiniteWrites);
+  // Coulomb's friction at the held nodes after a contact stage, as position-based dynamics has it
+  // (Macklin et al. 2014, §6.1): the stage's push along the hold's normal bounds how far the node
+  // is taken along with the tool's surface.
+  void applyHoldFriction(btSoftBody& body, double inverseStepSquared);
   // The soft solve of each active body. A body that tools hold in the solver (their holds among
   // its contacts), that the last word will look at or that the energy guard bounds is solved by
   // solveInStages, the others by Bullet's own solveConstraints.
@@ -229,6 +233,12 @@ class SoftBodySolverImpl {
     bool bulletContact = false;
     btVector3 before{0, 0, 0};
     btVector3 replayed{0, 0, 0};
+    // Friction at the hold (PairState::holdSurfaceMoves), when its tool has friction and its
+    // contact does not already stick: the hold's normal and the tool surface's move over the step.
+    btScalar staticFriction = 0;
+    btScalar kineticFriction = 0;
+    btVector3 normal{0, 0, 0};
+    btVector3 surfaceMove{0, 0, 0};
   };
   // A hold on a node that several tools held: the contact stage's move of such a node is split
   // among them by replaying their holds one by one, in the stage's order.

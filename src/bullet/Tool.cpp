@@ -59,9 +59,16 @@ btRigidBody* ToolState::dynamicBody() const {
 DynamicBody ToolState::dynamic() const { return DynamicBody::of(body, jacobianScratch, applied); }
 
 void ToolState::bodyMotion(Pose& outPrevious, Pose& outCurrent) const {
-  if (dynamic()) {
+  if (DynamicBody view = dynamic()) {
     outPrevious = toPose(body.getWorldTransform());
     outCurrent = toPose(body.getInterpolationWorldTransform());
+    // Bullet 3.24's soft multibody world leaves a link's interpolation transform at its pose now:
+    // the link's present velocity over the step predicts it (the step is known once
+    // thintool::SoftBodySolver has begun it; without that solver, no prediction).
+    btTransform predicted;
+    if (view.rigid() == nullptr && appliedStep > 0 && view.predictLinkPose(appliedStep, predicted)) {
+      outCurrent = toPose(predicted);
+    }
     return;
   }
   outCurrent = toPose(body.getWorldTransform());

@@ -415,6 +415,8 @@ void ToolAlgorithm::respond(PieceStep& step) {
   }
   computeResponse(step.context(), state.patch, state.detection.contacts, response,
                   state.response);
+  state.holdStaticFriction = response.friction.enabled ? response.friction.staticCoefficient : 0;
+  state.holdKineticFriction = response.friction.enabled ? response.friction.kineticCoefficient : 0;
   state.previousPose = step.pose;
   state.hasPreviousPose = true;
 }
@@ -458,6 +460,15 @@ void ToolAlgorithm::write(PieceStep& step) {
   }
   const Real moved =
       applyResponse(state, step.softBody, forceReacts ? DynamicBody() : dynamicBody, step.timeStep);
+  // The friction of the holds, in the soft solver, follows the tool's surface where each held
+  // node now is.
+  state.holdSurfaceMoves.clear();
+  if (state.holdStaticFriction > 0 || state.holdKineticFriction > 0) {
+    for (int k = 0; k < state.holdCount; ++k) {
+      const Vec3 at = toVec3(step.softBody.m_rcontacts[state.firstHold + k].m_node->m_x);
+      state.holdSurfaceMoves.push_back(at - step.previousPose.apply(step.pose.applyInverse(at)));
+    }
+  }
   if (m_tool.state().pass != nullptr) {
     m_tool.state().pass->recordMoves(moved);
   }

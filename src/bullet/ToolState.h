@@ -40,7 +40,8 @@ struct ToolState {
   RestShape& restShape(const btSoftBody& softBody);
   /// Swept detection's view of the tool's motion in this step: the body's pose at its start and at
   /// its end. Kinematic and static tools: the pose the last time the proxy's box was updated, and
-  /// now. Dynamic tools: Bullet's pose now and its unconstrained prediction for the step's end.
+  /// now. Dynamic tools: Bullet's pose now and its unconstrained prediction for the step's end (a
+  /// multibody link's from its velocity, DynamicBody::predictLinkPose).
   void bodyMotion(Pose& outPrevious, Pose& outCurrent) const;
   /// Called once per simulation step, when Bullet updates the proxy's box: moves "now" to "before".
   void trackMotion();
@@ -79,6 +80,7 @@ struct ToolState {
   mutable AppliedImpulse applied;
   btScalar appliedStep = 0;
   Wrench holdWrench;  // this step's, torque about the world's origin
+  AppliedImpulse holdImpulse;  // the same over the solve, as impulses (N s), for a dynamic tool
   Index holdNodesShared = 0;
   Pose lastFiniteBodyPose;  // the report's frame when the body's transform is not finite
   /// The configuration's record of the current collision pass; null for a tool made without one.
