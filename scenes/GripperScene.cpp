@@ -1,0 +1,307 @@
+// SPDX-License-Identifier: Zlib
+// Copyright (c) 2026 The ThinTool developers
+#include "GripperScene.h"
+
+#include "Metrics.h"
+#include "SoftBallScene.h"
+#include "TetraBlock.h"
+
+#include <thintool/thintool.h>
+
+#include <BulletDynamics/Featherstone/btMultiBody.h>
+#include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>
+#include <BulletDynamics/Featherstone/btMultiBodyJointMotor.h>
+#include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
+#include <BulletSoftBody/btDefaultSoftBodySolver.h>
+#include <BulletSoftBody/btSoftBodyRigidBodyCollisionConfiguration.h>
+#include <BulletSoftBody/btSoftMultiBodyDynamicsWorld.h>
+#include <btBulletDynamicsCommon.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <vector>
+
+namespace thintool::scenes {
+
+namespace {
+
+constexpr double kGravity = 10;                // m/s²
+constexpr double kCarriageMass = 2;            // kg
+constexpr double kFingerMass = 0.3;            // kg
+const btVector3 kFingerHalf(0.01f, 0.08f, 0.1f);  // m: 2 cm thick, 16 cm tall, 20 cm deep
+constexpr double kFingerStart = 0.16;          // m, each finger's centre from the gripper's axis
+constexpr double kCloseSpeed = 0.1;            // m/s, each finger
+constexpr double kLiftSpeed = 0.2;             // m/s
+constexpr double kBaseHeight = 0.5;            // m: the lift's carriage, clear of the body
+constexpr double kFingerDrop = 0.4;            // m: the fingers' centres below it, at the body's mid-height
+
+// The soft body's world and, in it, the gripper; Bullet's stock parts or ThinTool's.
+struct GripperWorld {
+  std::unique_ptr<btCollisionConfiguration> configuration;
+  std::unique_ptr<btCollisionDispatcher> dispatcher;
+  btDbvtBroadphase broadphase;
+  btMultiBodyConstraintSolver solver;
+  std::unique_ptr<btSoftBodySolver> softSolver;
+  std::unique_ptr<btSoftMultiBodyDynamicsWorld> world;
+
+  explicit GripperWorld(bool thinTool) {
+    if (thinTool) {
+      auto ours = std::make_unique<CollisionConfiguration>();
+      softSolver = std::make_unique<SoftBodySolver>(*ours);
+      configuration = std::move(ours);
+    } else {
+      configuration = std::make_unique<btSoftBodyRigidBodyCollisionConfiguration>();
+      softSolver = std::make_unique<btDefaultSoftBodySolver>();
+    }
+    dispatcher = std::make_unique<btCollisionDispatcher>(configuration.get());
+    world = std::make_unique<btSoftMultiBodyDynamicsWorld>(dispatcher.get(), &broadphase, &solver,
+                                                           configuration.get(), softSolver.get());
+    const btVector3 gravity(0, -btScalar(kGravity), 0);
+    world->setGravity(gravity);
+    world->getWorldInfo().m_gravity = gravity;
+    world->getWorldInfo().m_sparsesdf.Initialize();
+  }
+};
+
+// The gripper: a fixed base; link 0, the lift, slides up; links 1 and 2, the fingers, slide
+// towards each other across x. Each joint has a velocity motor.
+struct Gripper {
+  btMultiBody body{3, 0, btVector3(0, 0, 0), true, false};
+  btBoxShape fingerShape{kFingerHalf};
+  btBoxShape carriageShape{btVector3(0.2f, 0.03f, 0.1f)};
+  std::unique_ptr<btMultiBodyLinkCollider> carriage;  // Bullet solves a link's motor in its collider's island
+  std::array<std::unique_ptr<btMultiBodyLinkCollider>, 2> fingers;
+  std::array<std::unique_ptr<btMultiBodyJointMotor>, 3> motors;
+  btSoftMultiBodyDynamicsWorld& world;
+
+  Gripper(btSoftMultiBodyDynamicsWorld& w, double gripForce, double timeStep) : world(w) {
+    body.setBasePos(btVector3(0, btScalar(kBaseHeight), 0));
+    const btVector3 carriageInertia = btVector3(1, 1, 1) * btScalar(kCarriageMass * 0.01);
+    body.setupPrismatic(0, btScalar(kCarriageMass), carriageInertia, -1, btQuaternion::getIdentity(),
+                        btVector3(0, 1, 0), btVector3(0, 0, 0), btVector3(0, 0, 0), true);
+    btVector3 fingerInertia;
+    fingerShape.calculateLocalInertia(btScalar(kFingerMass), fingerInertia);
+    for (int f = 0; f < 2; ++f) {
+      const btScalar side = f == 0 ? -1 : 1;  // finger 0 on −x, closing along +x
+      body.setupPrismatic(f + 1, btScalar(kFingerMass), fingerInertia, 0, btQuaternion::getIdentity(),
+                          btVector3(-side, 0, 0), btVector3(side * btScalar(kFingerStart), -btScalar(kFingerDrop), 0),
+                          btVector3(0, 0, 0), true);
+    }
+    body.finalizeMultiDof();
+    body.setHasSelfCollision(false);
+    world.addMultiBody(&body);
+    btAlignedObjectArray<btQuaternion> worldToLocal;
+    btAlignedObjectArray<btVector3> localOrigin;
+    carriage = std::make_unique<btMultiBodyLinkCollider>(&body, 0);
+    carriage->setCollisionShape(&carriageShape);
+    body.getLink(0).m_collider = carriage.get();
+    for (int f = 0; f < 2; ++f) {
+      fingers[f] = std::make_unique<btMultiBodyLinkCollider>(&body, f + 1);
+      fingers[f]->setCollisionShape(&fingerShape);
+      body.getLink(f + 1).m_collider = fingers[f].get();
+    }
+    body.updateCollisionObjectWorldTransforms(worldToLocal, localOrigin);
+    world.addCollisionObject(carriage.get(), btBroadphaseProxy::DefaultFilter, btBroadphaseProxy::AllFilter);
+    for (int f = 0; f < 2; ++f) {
+      world.addCollisionObject(fingers[f].get(), btBroadphaseProxy::DefaultFilter, btBroadphaseProxy::AllFilter);
+    }
+    const btScalar liftImpulse = btScalar(1000 * timeStep);
+    motors[0] = std::make_unique<btMultiBodyJointMotor>(&body, 0, 0, liftImpulse);
+    for (int f = 1; f <= 2; ++f) {
+      motors[f] = std::make_unique<btMultiBodyJointMotor>(&body, f, 0, btScalar(gripForce * timeStep));
+    }
+    for (auto& motor : motors) {
+      motor->finalizeMultiDof();  // sizes the motor's rows, which getAppliedImpulse reads
+      world.addMultiBodyConstraint(motor.get());
+    }
+  }
+  ~Gripper() {
+    for (auto& motor : motors) world.removeMultiBodyConstraint(motor.get());
+    for (auto& finger : fingers) world.removeCollisionObject(finger.get());
+    world.removeCollisionObject(carriage.get());
+    world.removeMultiBody(&body);
+  }
+  Gripper(const Gripper&) = delete;
+  Gripper& operator=(const Gripper&) = delete;
+
+  void drive(double liftSpeed, double closeSpeed) {
+    motors[0]->setVelocityTarget(btScalar(liftSpeed));
+    motors[1]->setVelocityTarget(btScalar(closeSpeed));
+    motors[2]->setVelocityTarget(btScalar(closeSpeed));
+  }
+  // Each finger towards the joint position closed (m), at most at kCloseSpeed: a position
+  // controller on the joint's velocity, as a robot's fingers are driven.
+  void closeTo(double liftSpeed, double closed) {
+    motors[0]->setVelocityTarget(btScalar(liftSpeed));
+    for (int f = 1; f <= 2; ++f) {
+      const double speed = std::clamp(20 * (closed - body.getJointPos(f)), -kCloseSpeed, kCloseSpeed);
+      motors[f]->setVelocityTarget(btScalar(speed));
+    }
+  }
+  bool finite() const {
+    for (int i = 0; i < 3; ++i) {
+      if (!std::isfinite(body.getJointPos(i)) || !std::isfinite(body.getJointVel(i))) return false;
+    }
+    return true;
+  }
+};
+
+btSoftBody* makeBody(GraspedBody kind, btSoftBodyWorldInfo& info, double mass) {
+  btSoftBody* body = nullptr;
+  if (kind == GraspedBody::Cube) {
+    body = createTetraBlock(info, Vec3{0, 0.1, 0}, Vec3{0.2, 0.2, 0.2}, {4, 4, 4});
+  } else {
+    body = createTetraBlock(info, Vec3{0, 0.04, 0}, Vec3{0.08, 0.08, 0.8}, {2, 2, 20});
+  }
+  body->m_materials[0]->m_kLST = 0.8f;
+  body->m_cfg.piterations = 10;
+  body->m_cfg.kDF = 0.5;
+  body->m_cfg.kDP = 0.01f;
+  body->setTotalMass(btScalar(mass));
+  body->getCollisionShape()->setMargin(0.01f);
+  return body;
+}
+
+ToolBox fingerBox(const btTransform& pose) {
+  ToolBox box;
+  const btMatrix3x3& basis = pose.getBasis();
+  for (int i = 0; i < 3; ++i) box.rotationRows[i] = {basis[i].x(), basis[i].y(), basis[i].z()};
+  box.origin = {pose.getOrigin().x(), pose.getOrigin().y(), pose.getOrigin().z()};
+  box.halfExtents = {kFingerHalf.x(), kFingerHalf.y(), kFingerHalf.z()};
+  return box;
+}
+
+double meanHeight(const btSoftBody& body) {
+  double sum = 0;
+  for (int i = 0; i < body.m_nodes.size(); ++i) sum += body.m_nodes[i].m_x.y();
+  return sum / body.m_nodes.size();
+}
+
+double verticalMomentum(const btSoftBody& body) {
+  double p = 0;
+  for (int i = 0; i < body.m_nodes.size(); ++i) {
+    if (body.m_nodes[i].m_im > 0) p += body.m_nodes[i].m_v.y() / body.m_nodes[i].m_im;
+  }
+  return p;
+}
+
+bool finiteNodes(const btSoftBody& body) {
+  for (int i = 0; i < body.m_nodes.size(); ++i) {
+    if (!std::isfinite(body.m_nodes[i].m_x.length2()) || !std::isfinite(body.m_nodes[i].m_v.length2())) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+const char* graspedBodyName(GraspedBody body) { return body == GraspedBody::Cube ? "cube" : "cable"; }
+
+GripperRun runGripper(const GripperSettings& settings) {
+  GripperWorld w(settings.thinTool);
+  btSoftMultiBodyDynamicsWorld& world = *w.world;
+  btBoxShape groundShape(btVector3(5, 0.5, 5));
+  btRigidBody ground(btRigidBody::btRigidBodyConstructionInfo(0, nullptr, &groundShape));
+  ground.setWorldTransform(btTransform(btQuaternion::getIdentity(), btVector3(0, -0.5, 0)));
+  world.addRigidBody(&ground);
+  btSoftBody* body = makeBody(settings.body, world.getWorldInfo(), settings.bodyMass);
+  world.addSoftBody(body);
+  Gripper gripper(world, settings.gripForce, settings.timeStep);
+  std::array<Tool*, 2> tools{};
+  if (settings.thinTool) {
+    ToolOptions options;
+    options.response.friction.enabled = true;
+    for (int f = 0; f < 2; ++f) tools[f] = &addTool(world, *gripper.fingers[f], options);
+  }
+
+  const double dt = settings.timeStep;
+  // The fingers close until each presses settings.squeeze into the body.
+  const double halfWidth = settings.body == GraspedBody::Cube ? 0.1 : 0.04;
+  const double closed = kFingerStart - double(kFingerHalf.x()) - halfWidth + settings.squeeze;
+  const auto stepsOf = [dt](double seconds) { return static_cast<int>(std::lround(seconds / dt)); };
+  const int settle = stepsOf(0.5);
+  const int close = settle + stepsOf(1.5);
+  const int lift = close + stepsOf(settings.liftHeight / kLiftSpeed);
+  const int hold = lift + stepsOf(2);
+  const int open = hold + stepsOf(1);
+  const int loadFrom = hold - stepsOf(1);
+
+  GripperRun run;
+  std::vector<Point> nodes = nodePositions(*body);
+  const std::vector<std::array<int, 3>> faces = faceIndices(*body);
+  std::array<BoxGroundTruth, 2> truths;
+  double restHeight = 0;
+  double sinkAtLift = 0;
+  double lastMomentum = verticalMomentum(*body);
+  const double gripperWeight = (kCarriageMass + 2 * kFingerMass) * kGravity;
+  int loadSteps = 0;
+  double wallSeconds = 0;
+  for (int step = 0; step < open; ++step) {
+    if (step < settle) {
+      gripper.drive(0, 0);
+    } else if (step < close) {
+      gripper.closeTo(0, closed);
+    } else if (step < lift) {
+      gripper.closeTo(kLiftSpeed, closed);
+    } else if (step < hold) {
+      gripper.closeTo(0, closed);
+    } else {
+      gripper.drive(0, -kCloseSpeed);
+    }
+    const auto start = std::chrono::steady_clock::now();
+    world.stepSimulation(btScalar(dt), 1, btScalar(dt));
+    wallSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+    run.finite = run.finite && finiteNodes(*body) && gripper.finite();
+    nodes = nodePositions(*body);
+    for (int f = 0; f < 2; ++f) {
+      const ToolBox box = fingerBox(gripper.fingers[f]->getWorldTransform());
+      if (step == settle - 1) truths[f].start(box, nodes, faces);
+      if (step >= settle) truths[f].update(box, nodes, faces);
+    }
+    const double momentum = verticalMomentum(*body);
+    if (step == settle - 1) restHeight = meanHeight(*body);
+    const double fingerHeight = gripper.body.getJointPos(0);
+    if (step == lift - 1) sinkAtLift = fingerHeight - meanHeight(*body);
+    if (step >= loadFrom && step < hold) {
+      ++loadSteps;
+      run.grip += 0.5 * (std::abs(gripper.motors[1]->getAppliedImpulse(0)) + std::abs(gripper.motors[2]->getAppliedImpulse(0))) / dt;
+      run.liftLoad += gripper.motors[0]->getAppliedImpulse(0) / dt - gripperWeight;
+      run.bodyLoad += settings.bodyMass * kGravity + (momentum - lastMomentum) / dt;
+      for (Tool* tool : tools) {
+        if (tool == nullptr) continue;
+        const ToolStepReport& report = tool->report();
+        run.reportedLoad -= double(report.reaction.force.y);
+      }
+    }
+    if (step == hold - 1) {
+      run.rise = meanHeight(*body) - restHeight;
+      run.lift = fingerHeight;
+      run.slip = (fingerHeight - meanHeight(*body)) - sinkAtLift;
+    }
+    lastMomentum = momentum;
+  }
+  run.afterRelease = meanHeight(*body) - restHeight;
+  run.grip /= loadSteps;
+  run.liftLoad /= loadSteps;
+  run.bodyLoad /= loadSteps;
+  run.reportedLoad /= loadSteps;
+  for (const BoxGroundTruth& truth : truths) {
+    run.crossed += truth.metrics().crossed;
+    run.deepest = std::max(run.deepest, truth.metrics().maxPenetration);
+    run.piercedSteps += truth.metrics().piercedSteps;
+  }
+  run.wallMilliseconds = 1000 * wallSeconds / open;
+
+  for (int f = 0; f < 2; ++f) {
+    if (tools[f] != nullptr) removeTool(world, *gripper.fingers[f]);
+  }
+  world.removeSoftBody(body);
+  delete body;
+  world.removeRigidBody(&ground);
+  return run;
+}
+
+}  // namespace thintool::scenes

@@ -1,0 +1,42 @@
+// SPDX-License-Identifier: Zlib
+// Copyright (c) 2026 The ThinTool developers
+
+// A robot's two-finger gripper (a Featherstone multibody whose finger links are dynamic tools)
+// closes on a soft tetrahedral cube and cable, lifts them, holds them and lets go
+// (scenes/GripperScene.h, examples/gripper_grasp). Judged by the evaluation suite's ground truth
+// and by the bodies' own momentum.
+
+#include "GripperScene.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+namespace thintool::scenes {
+namespace {
+
+class GripperGrasp : public ::testing::TestWithParam<GraspedBody> {};
+
+TEST_P(GripperGrasp, TheFingersLiftTheBodyAndFeelItsWeight) {
+  GripperSettings settings;
+  settings.body = GetParam();
+  const GripperRun run = runGripper(settings);
+  ASSERT_TRUE(run.finite);
+  EXPECT_GT(run.rise, 0.7 * run.lift) << "the body rose with the fingers";
+  EXPECT_LT(run.afterRelease, 0.02) << "let go, it is back on the ground";
+  EXPECT_EQ(run.crossed, 0) << "no node passed through a finger";
+  EXPECT_LT(run.deepest, 1e-4) << "no node or face deeper than 0.1 mm in a finger after a step";
+  EXPECT_GT(run.grip, 5) << "the fingers squeeze";
+  // What ThinTool applied to the fingers is what the lift's motor carries beyond the gripper's own
+  // weight, and it holds the body up: its momentum balance, within 20 %.
+  EXPECT_NEAR(run.reportedLoad, run.liftLoad, 0.02 * run.bodyLoad);
+  EXPECT_NEAR(run.liftLoad, run.bodyLoad, 0.2 * run.bodyLoad);
+}
+
+INSTANTIATE_TEST_SUITE_P(Bodies, GripperGrasp, ::testing::Values(GraspedBody::Cube, GraspedBody::Cable),
+                         [](const ::testing::TestParamInfo<GraspedBody>& param) {
+                           return std::string(graspedBodyName(param.param));
+                         });
+
+}  // namespace
+}  // namespace thintool::scenes
