@@ -87,40 +87,6 @@ void DynamicBody::applyImpulse(const btVector3& impulse, const btVector3& point)
   if (row(point, impulse / magnitude).inverseMass > 0) applyAlongRow(magnitude);
 }
 
-void DynamicBody::applyMomentImpulse(const btVector3& linear, const btVector3& angular) {
-  if (!std::isfinite(linear.length2()) || !std::isfinite(angular.length2())) return;
-  if (m_applied != nullptr) {
-    m_applied->linear += linear;
-    m_applied->angular += angular;
-  }
-  if (m_rigid != nullptr) {
-    m_rigid->applyCentralImpulse(linear);
-    m_rigid->applyTorqueImpulse(angular - m_rigid->getCenterOfMassPosition().cross(linear));
-    return;
-  }
-  if (m_link == nullptr) return;
-  const btVector3 centre = m_link->getWorldTransform().getOrigin();
-  const btVector3 torque = angular - centre.cross(linear);
-  AppliedImpulse* applied = m_applied;
-  m_applied = nullptr;  // summed above, whole
-  applyImpulse(linear, centre);
-  const btScalar magnitude = torque.length();
-  if (magnitude > 0) {
-    const btMultiBody& multiBody = *m_link->m_multiBody;
-    JacobianScratch& s = *m_scratch;
-    const int size = 6 + multiBody.getNumDofs();
-    s.jacobian.resize(size);
-    s.velocityChange.resize(size);
-    multiBody.fillConstraintJacobianMultiDof(m_link->m_link, centre, torque / magnitude, btVector3(0, 0, 0),
-                                             &s.jacobian[0], s.reals, s.vectors, s.matrices);
-    multiBody.calcAccelerationDeltasMultiDof(&s.jacobian[0], &s.velocityChange[0], s.reals, s.vectors);
-    bool finite = true;
-    for (int i = 0; i < size; ++i) finite = finite && std::isfinite(s.velocityChange[i]);
-    if (finite) m_link->m_multiBody->applyDeltaVeeMultiDof(&s.velocityChange[0], magnitude);
-  }
-  m_applied = applied;
-}
-
 bool DynamicBody::predictLinkPose(btScalar timeStep, btTransform& outPose) {
   if (m_link == nullptr) return false;
   const btMultiBody& multiBody = *m_link->m_multiBody;

@@ -73,10 +73,6 @@ class DynamicBody {
   void applyAlongRow(btScalar impulse);
   /// Applies impulse (N s, world) at point (m, world).
   void applyImpulse(const btVector3& impulse, const btVector3& point);
-  /// Applies the impulse linear (N s, world) together with angular, the moment of the impulses it
-  /// sums about the world's origin (N m s): a rigid body's linear and angular momenta change by
-  /// them; a link takes linear at its centre of mass and the rest as an angular impulse.
-  void applyMomentImpulse(const btVector3& linear, const btVector3& angular);
   /// A multibody link's pose after timeStep (s) at its present velocities, integrated as Bullet
   /// integrates a rigid body's; false for a rigid body (Bullet predicts its own) or an empty view.
   bool predictLinkPose(btScalar timeStep, btTransform& outPose);

@@ -55,8 +55,6 @@ void addHoldForce(detail::ToolState& tool, const btSoftBody::Node& node, const b
   if (!isFinite(force)) return;
   tool.holdWrench.force += force;
   tool.holdWrench.torque += cross(toVec3(node.m_x), force);
-  // The same push as an impulse, m·moveUndone/dt, for a dynamic tool to take after the solve.
-  tool.holdImpulse.add(toBt(force / std::sqrt(inverseStepSquared)), node.m_x);
 }
 
 // Everything the piece can reach during the step: its boxes at the arc's samples, grown by how far
@@ -312,7 +310,7 @@ void SoftBodySolverImpl::replaySharedHolds(btSoftBody& body, double inverseStepS
   const btScalar dt = body.m_sst.sdt;
   const btScalar margin = body.getCollisionShape()->getMargin();
   for (HeldNode& held : m_held) held.replayed = held.before;
-  for (const SharedHold& shared : m_sharedHolds) {
+  for (SharedHold& shared : m_sharedHolds) {
     HeldNode& held = m_held[static_cast<std::size_t>(shared.held)];
     const btSoftBody::RContact& contact = body.m_rcontacts[shared.contact];
     const btSoftBody::Node& node = body.m_nodes[held.node];
@@ -326,12 +324,13 @@ void SoftBodySolverImpl::replaySharedHolds(btSoftBody& body, double inverseStepS
     const btVector3 impulse = contact.m_c0 * (relative - tangential * contact.m_c3 + normal * (depth * contact.m_c4));
     const btVector3 move = impulse * contact.m_c2;
     held.replayed -= move;
+    shared.pushed -= move;
     addHoldForce(shared.tool->state(), node, move, inverseStepSquared);
   }
 }
 
 void SoftBodySolverImpl::applyHoldFriction(btSoftBody& body, double inverseStepSquared) {
-  for (const HeldNode& held : m_held) {
+  for (HeldNode& held : m_held) {
     if (held.severalTools || held.bulletContact || !(held.staticFriction > 0 || held.kineticFriction > 0)) continue;
     btSoftBody::Node& node = body.m_nodes[held.node];
     const btScalar pushed = (node.m_x - held.before).dot(held.normal);
@@ -347,6 +346,29 @@ void SoftBodySolverImpl::applyHoldFriction(btSoftBody& body, double inverseStepS
     node.m_x += move;
     detail::checkWrite(before, node.m_x, held.tool->state().lastWord.nonFiniteWrites);
     addHoldForce(held.tool->state(), node, -move, inverseStepSquared);
+    held.pushed += move;
+  }
+}
+
+void SoftBodySolverImpl::reactToHolds(btSoftBody& body) {
+  const btScalar inverseStep = body.m_sst.isdt;
+  const auto react = [&](Tool& tool, const btSoftBody::Node& node, const btVector3& pushed) {
+    detail::DynamicBody dynamicTool = reactingBody(tool.state());
+    if (!dynamicTool || pushed.isZero()) return;
+    const detail::BodyVelocities before(dynamicTool);
+    // The node's velocity had the holds not pushed it: the solve's, less their push.
+    const btVector3 unpushedVelocity = (node.m_x - pushed - node.m_q) * inverseStep;
+    if (detail::applyNodeReaction(dynamicTool, node.m_x, pushed, node.m_im, inverseStep, unpushedVelocity) > 0) {
+      dynamicTool.activate();
+    }
+    before.check(tool.state().lastWord.nonFiniteWrites);
+  };
+  for (const HeldNode& held : m_held) {
+    if (held.severalTools || held.bulletContact) continue;
+    react(*held.tool, body.m_nodes[held.node], held.pushed);
+  }
+  for (const SharedHold& shared : m_sharedHolds) {
+    react(*shared.tool, body.m_nodes[m_held[static_cast<std::size_t>(shared.held)].node], shared.pushed);
   }
 }
 
@@ -426,15 +448,17 @@ void SoftBodySolverImpl::solveInStages(btSoftBody& body, btScalar longestMove) {
         }
         btSoftBody::getSolver(config.m_psequence[stage])(&body, 1, fraction);
         if (!contacts) continue;
-        for (const HeldNode& held : m_held) {
+        for (HeldNode& held : m_held) {
           const btSoftBody::Node& node = body.m_nodes[held.node];
           if (held.severalTools || held.bulletContact) continue;
           addHoldForce(held.tool->state(), node, held.before - node.m_x, inverseStepSquared);
+          held.pushed += node.m_x - held.before;
         }
         if (!m_sharedHolds.empty()) replaySharedHolds(body, inverseStepSquared);
         applyHoldFriction(body, inverseStepSquared);
       }
     }
+    reactToHolds(body);
     const btScalar velocityFactor = body.m_sst.isdt * (1 - config.kDP);
     // This is the last pass over the nodes unless drift iterations or clusters follow, which move
     // them again: the last word's survey of the body runs in it, on nodes already in cache, for
@@ -507,7 +531,6 @@ void SoftBodySolverImpl::solveConstraints(btScalar timeStep) {
   const auto measureEnd = Clock::now();
   for (Tool* tool : m_configuration.tools()) {
     tool->state().holdWrench = Wrench{};
-    tool->state().holdImpulse = detail::AppliedImpulse{};
     tool->state().holdNodesShared = 0;
   }
   // The tools whose last word runs, and where their pieces reach, before Bullet's solve, which
@@ -534,18 +557,6 @@ void SoftBodySolverImpl::solveConstraints(btScalar timeStep) {
   m_hasStepReach = !tools.empty() && isFinite(m_stepReach.min) && isFinite(m_stepReach.max);
   solveSoftBodies();
   ++m_step;
-  // A hold pushed its node with the tool's surface as if the tool could not give way; a dynamic
-  // tool takes that push back, as the impulse its holds gave over the solve, before the last word's
-  // reactions and stops read its velocity.
-  for (Tool* tool : m_configuration.tools()) {
-    detail::ToolState& state = tool->state();
-    detail::DynamicBody body = reactingBody(state);
-    if (!body || (state.holdImpulse.linear.isZero() && state.holdImpulse.angular.isZero())) continue;
-    const detail::BodyVelocities before(body);
-    body.applyMomentImpulse(state.holdImpulse.linear, state.holdImpulse.angular);
-    body.activate();
-    before.check(state.lastWord.nonFiniteWrites);
-  }
   // One piece's moves can push soft features into another (two jaws, two tools): the pieces take
   // turns until a pass moves nothing, or a pass had a single piece near soft features. Pieces
   // still pushing faces into each other after the last pass leave them to the last resort, which

@@ -169,6 +169,10 @@ class SoftBodySolverImpl {
   // (Macklin et al. 2014, §6.1): the stage's push along the hold's normal bounds how far the node
   // is taken along with the tool's surface.
   void applyHoldFriction(btSoftBody& body, double inverseStepSquared);
+  // A hold treats its tool as immovable within the solve; after it, a dynamic tool takes each held
+  // node's push back as that node's reaction (ToolReaction.h: capped at an inelastic collision's
+  // exchange, so that a needle light about its axis is not spun by its holds).
+  void reactToHolds(btSoftBody& body);
   // The soft solve of each active body. A body that tools hold in the solver (their holds among
   // its contacts), that the last word will look at or that the energy guard bounds is solved by
   // solveInStages, the others by Bullet's own solveConstraints.
@@ -233,6 +237,7 @@ class SoftBodySolverImpl {
     bool bulletContact = false;
     btVector3 before{0, 0, 0};
     btVector3 replayed{0, 0, 0};
+    btVector3 pushed{0, 0, 0};  // the holds' moves of the node over the solve, friction's included
     // Friction at the hold (PairState::holdSurfaceMoves), when its tool has friction and its
     // contact does not already stick: the hold's normal and the tool surface's move over the step.
     btScalar staticFriction = 0;
@@ -246,6 +251,7 @@ class SoftBodySolverImpl {
     int contact = 0;
     int held = 0;  // entry in m_held
     Tool* tool = nullptr;
+    btVector3 pushed{0, 0, 0};  // this tool's hold's moves of the node over the solve
   };
   std::vector<HeldNode> m_held;
   std::vector<SharedHold> m_sharedHolds;

@@ -80,7 +80,6 @@ struct ToolState {
   mutable AppliedImpulse applied;
   btScalar appliedStep = 0;
   Wrench holdWrench;  // this step's, torque about the world's origin
-  AppliedImpulse holdImpulse;  // the same over the solve, as impulses (N s), for a dynamic tool
   Index holdNodesShared = 0;
   Pose lastFiniteBodyPose;  // the report's frame when the body's transform is not finite
   /// The configuration's record of the current collision pass; null for a tool made without one.
