@@ -148,10 +148,10 @@ struct ToolStepReport {
   /// Measured in a world whose soft-body solver is a thintool::SoftBodySolver; zero elsewhere.
   Wrench holdWrench;
   /// Force (N) and torque about the tool body's origin (N·m) of the impulses ThinTool applied to a
-  /// dynamic tool in the step (the moved nodes' reactions, the pinned nodes' stops, and the force
-  /// model's when it reacts on the tool), over the step: the tissue's load as the tool's motion
-  /// took it. Zero for a static or kinematic tool, and in a world whose soft-body solver is not a
-  /// thintool::SoftBodySolver.
+  /// dynamic tool in the step (the moved nodes' reactions, its holds' push after the soft solve,
+  /// the pinned nodes' stops, and the force model's when it reacts on the tool), over the step:
+  /// the tissue's load as the tool's motion took it. Zero for a static or kinematic tool, and in a
+  /// world whose soft-body solver is not a thintool::SoftBodySolver.
   Wrench reaction;
   /// The tissue's force on the tool by the force model (Hunt–Crossley by default).
   ToolForce contactForce;
