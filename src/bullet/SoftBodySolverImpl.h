@@ -238,8 +238,9 @@ class SoftBodySolverImpl {
     btVector3 before{0, 0, 0};
     btVector3 replayed{0, 0, 0};
     btVector3 pushed{0, 0, 0};  // the holds' moves of the node over the solve, friction's included
-    // Friction at the hold (PairState::holdSurfaceMoves), when its tool has friction and its
-    // contact does not already stick: the hold's normal and the tool surface's move over the step.
+    // Friction at the hold (PairState::holdSurfaceMoves), when its tool is dynamic and has friction
+    // and its contact does not already stick: the hold's normal and the tool surface's move over
+    // the step.
     btScalar staticFriction = 0;
     btScalar kineticFriction = 0;
     btVector3 normal{0, 0, 0};
