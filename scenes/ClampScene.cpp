@@ -36,21 +36,6 @@ Body bodyOf(ClampBody kind) {
 }
 
 // A jaw as the ground truth's box.
-ToolBox jawBox(const btTransform& pose, const Vec3& half) {
-  ToolBox box;
-  const btMatrix3x3& basis = pose.getBasis();
-  for (int i = 0; i < 3; ++i) box.rotationRows[i] = {basis[i].x(), basis[i].y(), basis[i].z()};
-  box.origin = {pose.getOrigin().x(), pose.getOrigin().y(), pose.getOrigin().z()};
-  box.halfExtents = {half.x, half.y, half.z};
-  return box;
-}
-
-double meanHeight(const btSoftBody& body) {
-  double sum = 0;
-  for (int i = 0; i < body.m_nodes.size(); ++i) sum += body.m_nodes[i].m_x.y();
-  return sum / body.m_nodes.size();
-}
-
 btVector3 momentum(const btSoftBody& body) {
   btVector3 p(0, 0, 0);
   for (int i = 0; i < body.m_nodes.size(); ++i) {
@@ -170,8 +155,8 @@ ClampSample ClampStage::step(const btTransform& pose, double opening, const std:
 
 std::array<ToolBox, 2> ClampStage::boxes() {
   return std::array<ToolBox, 2>{
-      jawBox(m_clamp->jawBody(0).getWorldTransform(), m_clampSettings.jawHalfExtents),
-      jawBox(m_clamp->jawBody(1).getWorldTransform(), m_clampSettings.jawHalfExtents)};
+      boxAt(m_clamp->jawBody(0).getWorldTransform(), m_clampSettings.jawHalfExtents),
+      boxAt(m_clamp->jawBody(1).getWorldTransform(), m_clampSettings.jawHalfExtents)};
 }
 
 const char* clampBodyName(ClampBody body) { return body == ClampBody::Sphere ? "sphere" : "vessel"; }

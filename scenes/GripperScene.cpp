@@ -165,21 +165,6 @@ btSoftBody* makeBody(GraspedBody kind, btSoftBodyWorldInfo& info, double mass) {
   return body;
 }
 
-ToolBox fingerBox(const btTransform& pose) {
-  ToolBox box;
-  const btMatrix3x3& basis = pose.getBasis();
-  for (int i = 0; i < 3; ++i) box.rotationRows[i] = {basis[i].x(), basis[i].y(), basis[i].z()};
-  box.origin = {pose.getOrigin().x(), pose.getOrigin().y(), pose.getOrigin().z()};
-  box.halfExtents = {kFingerHalf.x(), kFingerHalf.y(), kFingerHalf.z()};
-  return box;
-}
-
-double meanHeight(const btSoftBody& body) {
-  double sum = 0;
-  for (int i = 0; i < body.m_nodes.size(); ++i) sum += body.m_nodes[i].m_x.y();
-  return sum / body.m_nodes.size();
-}
-
 double verticalMomentum(const btSoftBody& body) {
   double p = 0;
   for (int i = 0; i < body.m_nodes.size(); ++i) {
@@ -257,7 +242,7 @@ GripperRun runGripper(const GripperSettings& settings) {
     run.finite = run.finite && finiteNodes(*body) && gripper.finite();
     nodes = nodePositions(*body);
     for (int f = 0; f < 2; ++f) {
-      const ToolBox box = fingerBox(gripper.fingers[f]->getWorldTransform());
+      const ToolBox box = boxAt(gripper.fingers[f]->getWorldTransform(), toVec3(kFingerHalf));
       if (step == settle - 1) truths[f].start(box, nodes, faces);
       if (step >= settle) truths[f].update(box, nodes, faces);
     }

@@ -354,6 +354,21 @@ double SoftBallScene::pressStartHeight() const {
 }
 
 
+double meanHeight(const btSoftBody& body) {
+  double sum = 0;
+  for (int i = 0; i < body.m_nodes.size(); ++i) sum += body.m_nodes[i].m_x.y();
+  return sum / body.m_nodes.size();
+}
+
+ToolBox boxAt(const btTransform& pose, const Vec3& halfExtents) {
+  ToolBox box;
+  const btMatrix3x3& basis = pose.getBasis();
+  for (int i = 0; i < 3; ++i) box.rotationRows[i] = {basis[i].x(), basis[i].y(), basis[i].z()};
+  box.origin = {pose.getOrigin().x(), pose.getOrigin().y(), pose.getOrigin().z()};
+  box.halfExtents = {halfExtents.x, halfExtents.y, halfExtents.z};
+  return box;
+}
+
 std::vector<Point> nodePositions(const btSoftBody& ball) {
   std::vector<Point> points(ball.m_nodes.size());
   for (int i = 0; i < ball.m_nodes.size(); ++i) {

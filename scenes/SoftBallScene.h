@@ -152,6 +152,10 @@ btSoftBody* createExactHullEllipsoid(btSoftBodyWorldInfo& info, const btVector3&
 /// The ball's node positions and face indices, for the metrics.
 std::vector<Point> nodePositions(const btSoftBody& ball);
 std::vector<std::array<int, 3>> faceIndices(const btSoftBody& ball);
+/// A soft body's mean node height (m): where a grasp lifted it to.
+double meanHeight(const btSoftBody& body);
+/// A box of the given half extents (m) at pose, for the metrics.
+ToolBox boxAt(const btTransform& pose, const Vec3& halfExtents);
 
 /// Drives the tool of a settled scene through poseAt(step) for steps steps, tracking the ball's
 /// nodes against the tool; the ground truth starts at pose 0.

@@ -48,6 +48,20 @@ struct SoftMultiBodyWorld {
   }
 };
 
+// A soft ball of radius 0.5 m and 1 kg held by its pressure, resting on the ground at the origin,
+// added to world; the caller removes and deletes it.
+btSoftBody* addBall(btSoftMultiBodyDynamicsWorld& world) {
+  btSoftBody* ball = btSoftBodyHelpers::CreateEllipsoid(world.getWorldInfo(), btVector3(0, 0.5, 0),
+                                                        btVector3(0.5, 0.5, 0.5), 256);
+  ball->m_materials[0]->m_kLST = 0.5;
+  ball->m_cfg.piterations = 4;
+  ball->m_cfg.kPR = 50;
+  ball->getCollisionShape()->setMargin(0.02);
+  ball->setTotalMass(1);
+  world.addSoftBody(ball);
+  return ball;
+}
+
 // A fixed base at basePosition and one prismatic link along -y of the given mass carrying a box,
 // driven by a velocity motor, or free on its joint when motorImpulse is 0 (N s a step); added to the
 // world, removed with it.
@@ -96,14 +110,7 @@ TEST(MultiBodyTool, AFingerLinkPressedIntoABallKeepsItsNodesOut) {
   ground.setWorldTransform(btTransform(btQuaternion::getIdentity(), btVector3(0, -0.5, 0)));
   world.addRigidBody(&ground);
 
-  btSoftBody* ball = btSoftBodyHelpers::CreateEllipsoid(world.getWorldInfo(), btVector3(0, 0.5, 0),
-                                                        btVector3(0.5, 0.5, 0.5), 256);
-  ball->m_materials[0]->m_kLST = 0.5;
-  ball->m_cfg.piterations = 4;
-  ball->m_cfg.kPR = 50;
-  ball->getCollisionShape()->setMargin(0.02);
-  ball->setTotalMass(1);
-  world.addSoftBody(ball);
+  btSoftBody* ball = addBall(world);
 
   // A fixed base 1.5 m up and one prismatic link along -y carrying a plate 2 cm thick, driven down
   // at 0.5 m/s whatever the ball pushes back: the motor holds the speed.
@@ -155,15 +162,8 @@ Drop dropOntoABall(SoftMultiBodyWorld& w, btCollisionObject& toolBody, const btB
   btRigidBody ground(btRigidBody::btRigidBodyConstructionInfo(0, nullptr, &groundShape));
   ground.setWorldTransform(btTransform(btQuaternion::getIdentity(), btVector3(0, -0.5, 0)));
   world.addRigidBody(&ground);
-  btSoftBody* ball = btSoftBodyHelpers::CreateEllipsoid(world.getWorldInfo(), btVector3(0, 0.5, 0),
-                                                        btVector3(0.5, 0.5, 0.5), 256);
-  ball->m_materials[0]->m_kLST = 0.5;
-  ball->m_cfg.piterations = 4;
-  ball->m_cfg.kPR = 50;
-  ball->getCollisionShape()->setMargin(0.02);
-  ball->setTotalMass(1);
+  btSoftBody* ball = addBall(world);
   ball->m_cfg.kDF = 1;
-  world.addSoftBody(ball);
 
   Tool& tool = addTool(world, toolBody);
   Drop drop;
