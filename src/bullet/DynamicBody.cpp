@@ -34,14 +34,6 @@ DynamicBody::Row DynamicBody::row(const btVector3& point, const btVector3& direc
   m_rowPoint = point;
   m_rowDirection = direction;
   Row result;
-  if (m_rigid != nullptr) {
-    const btVector3 arm = point - m_rigid->getCenterOfMassPosition();
-    const btVector3 armCrossDirection = arm.cross(direction);
-    result.speed = m_rigid->getVelocityInLocalPoint(arm).dot(direction);
-    result.inverseMass =
-        m_rigid->getInvMass() + armCrossDirection.dot(m_rigid->getInvInertiaTensorWorld() * armCrossDirection);
-    return result;
-  }
   if (m_link == nullptr) return result;
   const btMultiBody& multiBody = *m_link->m_multiBody;
   const int size = 6 + multiBody.getNumDofs();
@@ -67,12 +59,8 @@ DynamicBody::Row DynamicBody::row(const btVector3& point, const btVector3& direc
 
 void DynamicBody::applyAlongRow(btScalar impulse) {
   if (!std::isfinite(impulse) || impulse == 0) return;
-  if (m_applied != nullptr) m_applied->add(m_rowDirection * impulse, m_rowPoint);
-  if (m_rigid != nullptr) {
-    m_rigid->applyImpulse(m_rowDirection * impulse, m_rowPoint - m_rigid->getCenterOfMassPosition());
-    return;
-  }
   if (m_link == nullptr) return;
+  if (m_applied != nullptr) m_applied->add(m_rowDirection * impulse, m_rowPoint);
   m_link->m_multiBody->applyDeltaVeeMultiDof(&m_scratch->velocityChange[0], impulse);
 }
 
@@ -125,12 +113,7 @@ void DynamicBody::activate() {
   }
 }
 
-bool DynamicBody::velocitiesFinite() const {
-  if (m_rigid != nullptr) {
-    const btVector3 linear = m_rigid->getLinearVelocity();
-    const btVector3 angular = m_rigid->getAngularVelocity();
-    return std::isfinite(linear.length2()) && std::isfinite(angular.length2());
-  }
+bool DynamicBody::linkVelocitiesFinite() const {
   if (m_link == nullptr) return true;
   const btMultiBody& multiBody = *m_link->m_multiBody;
   const btScalar* velocities = multiBody.getVelocityVector();

@@ -61,15 +61,17 @@ class DynamicBody {
   /// Where the impulses applied to the body are summed; null when nowhere.
   AppliedImpulse* applied() const { return m_applied; }
 
-  /// The body at point (m, world) along the unit vector direction: its speed there (m/s) and the
-  /// inverse of its effective mass there (1/kg; 0 where it cannot move along direction).
+  /// A multibody link at point (m, world) along the unit vector direction: its speed there (m/s)
+  /// and the inverse of its effective mass there (1/kg; 0 where it cannot move along direction).
+  /// A rigid body's reactions use its own row (ToolReaction.cpp); for it, as for an empty view,
+  /// both are 0.
   struct Row {
     btScalar speed = 0;
     btScalar inverseMass = 0;
   };
   /// Also readies applyAlongRow for this point and direction.
   Row row(const btVector3& point, const btVector3& direction);
-  /// Applies impulse (N s) along the direction of the last row, at its point.
+  /// Applies impulse (N s) to a link along the direction of the last row, at its point.
   void applyAlongRow(btScalar impulse);
   /// Applies impulse (N s, world) at point (m, world).
   void applyImpulse(const btVector3& impulse, const btVector3& point);
@@ -78,8 +80,8 @@ class DynamicBody {
   bool predictLinkPose(btScalar timeStep, btTransform& outPose);
   /// Wakes the body (and a multibody's links) so that Bullet integrates what was applied.
   void activate();
-  /// Whether every velocity of the body is finite.
-  bool velocitiesFinite() const;
+  /// Whether every joint velocity of a link's multibody is finite (true for any other view).
+  bool linkVelocitiesFinite() const;
 
  private:
   btRigidBody* m_rigid = nullptr;

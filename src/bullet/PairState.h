@@ -78,8 +78,9 @@ struct PairState {
   /// referring to holdBodies[k] (the soft solver checks that before it reads them).
   int firstHold = 0;
   int holdCount = 0;
-  /// With friction: the tool surface's displacement over the step at each hold's node (world), and
-  /// the pair's coefficients, for the soft solver's friction at the holds. Empty without friction.
+  /// With friction, for a dynamic tool: the tool surface's displacement over the step at each
+  /// hold's node (world), and the pair's coefficients, for the soft solver's friction at the holds.
+  /// Empty otherwise.
   std::vector<Vec3> holdSurfaceMoves;
   Real holdStaticFriction = 0;
   Real holdKineticFriction = 0;

@@ -266,12 +266,8 @@ bool SoftBodySolverImpl::collectHolds(btSoftBody& body) {
           entry = static_cast<int>(m_held.size());
           m_held.push_back({node, tool, false, false, btVector3(0, 0, 0), btVector3(0, 0, 0)});
           HeldNode& added = m_held.back();
-          // Only a dynamic tool's holds: a kinematic tool is driven into the tissue by its pose,
-          // which gives the response's friction its normal move each step, and friction in the
-          // solve made the clamp's held vessel rock (its load varying by 121 % peak to peak at the
-          // hand, against 14 %, examples/clamp_demo --session --vessel).
-          if (static_cast<std::size_t>(k) < state.holdSurfaceMoves.size() && contact.m_c3 > 0 &&
-              tool->state().dynamic()) {
+          // Friction where the pair gave its holds the tool's surface motion (a dynamic tool's).
+          if (static_cast<std::size_t>(k) < state.holdSurfaceMoves.size() && contact.m_c3 > 0) {
             added.staticFriction = btScalar(state.holdStaticFriction);
             added.kineticFriction = btScalar(state.holdKineticFriction);
             added.normal = contact.m_cti.m_normal;
@@ -700,7 +696,7 @@ void SoftBodySolverImpl::predictMotion(btScalar timeStep) {
   // from now on.
   for (Tool* tool : m_configuration.tools()) {
     tool->state().applied = detail::AppliedImpulse{};
-    tool->state().appliedStep = timeStep;
+    tool->state().stepLength = timeStep;
   }
   for (int s = 0; s < m_softBodySet.size(); ++s) {
     btSoftBody& softBody = *m_softBodySet[s];

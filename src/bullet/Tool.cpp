@@ -66,7 +66,7 @@ void ToolState::bodyMotion(Pose& outPrevious, Pose& outCurrent) const {
     // the link's present velocity over the step predicts it (the step is known once
     // thintool::SoftBodySolver has begun it; without that solver, no prediction).
     btTransform predicted;
-    if (view.rigid() == nullptr && appliedStep > 0 && view.predictLinkPose(appliedStep, predicted)) {
+    if (stepLength > 0 && view.predictLinkPose(stepLength, predicted)) {
       outCurrent = toPose(predicted);
     }
     return;
@@ -182,9 +182,9 @@ const ToolStepReport& Tool::report() {
   t.report.holdWrench.force = t.holdWrench.force;
   t.report.holdWrench.torque = t.holdWrench.torque - cross(bodyPose.translation, t.holdWrench.force);
   t.report.reaction = Wrench{};
-  if (t.appliedStep > 0) {
-    const Vec3 force = toVec3(t.applied.linear) / Real(t.appliedStep);
-    const Vec3 torque = toVec3(t.applied.angular) / Real(t.appliedStep) - cross(bodyPose.translation, force);
+  if (t.stepLength > 0) {
+    const Vec3 force = toVec3(t.applied.linear) / Real(t.stepLength);
+    const Vec3 torque = toVec3(t.applied.angular) / Real(t.stepLength) - cross(bodyPose.translation, force);
     if (isFinite(force) && isFinite(torque)) t.report.reaction = Wrench{force, torque};
   }
 

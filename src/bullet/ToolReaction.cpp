@@ -21,6 +21,19 @@ namespace {
 constexpr Real kMostTurnPerSample = Real(5) * kPi / 180;
 constexpr int kMostSamples = 64;
 
+// The impulse (N s) a node of inverse mass inverseNodeMass exchanges with a body of inverse
+// effective mass inverseEffectiveMass at the point, the two closing at closing (m/s) along a move
+// of distance (m) in a step of 1/inverseStep: the inelastic exchange, but no more than the node's
+// change of momentum. 0 when nothing is exchanged.
+btScalar exchangedImpulse(btScalar distance, btScalar inverseNodeMass, btScalar inverseEffectiveMass,
+                          btScalar closing, btScalar inverseStep) {
+  btScalar impulse = std::max(btScalar(0), closing) / (inverseNodeMass + inverseEffectiveMass);
+  if (inverseNodeMass > 0) {
+    impulse = std::min(impulse, distance * inverseStep / inverseNodeMass);
+  }
+  return impulse > 0 && std::isfinite(impulse) ? impulse : 0;
+}
+
 }  // namespace
 
 btScalar applyNodeReaction(btRigidBody& tool, const btVector3& nodePosition, const btVector3& displacement,
@@ -40,11 +53,8 @@ btScalar applyNodeReaction(btRigidBody& tool, const btVector3& nodePosition, con
     return 0;  // neither gives way: nothing to exchange
   }
   const btScalar closing = (tool.getVelocityInLocalPoint(arm) - nodeVelocity).dot(direction);
-  btScalar impulse = std::max(btScalar(0), closing) / inverseReducedMass;
-  if (inverseNodeMass > 0) {
-    impulse = std::min(impulse, distance * inverseStep / inverseNodeMass);
-  }
-  if (!(impulse > 0) || !std::isfinite(impulse)) {
+  const btScalar impulse = exchangedImpulse(distance, inverseNodeMass, inverseEffectiveMass, closing, inverseStep);
+  if (impulse == 0) {
     return 0;
   }
   tool.applyImpulse(direction * -impulse, arm);
@@ -132,16 +142,12 @@ btScalar applyNodeReaction(DynamicBody& tool, const btVector3& nodePosition, con
   }
   const btVector3 direction = displacement / distance;
   const DynamicBody::Row row = tool.row(nodePosition, direction);
-  const btScalar inverseReducedMass = inverseNodeMass + row.inverseMass;
-  if (!(inverseReducedMass > 0) || !(row.inverseMass > 0)) {
+  if (!(row.inverseMass > 0)) {
     return 0;  // the link cannot move along the move: nothing to exchange
   }
   const btScalar closing = row.speed - nodeVelocity.dot(direction);
-  btScalar impulse = std::max(btScalar(0), closing) / inverseReducedMass;
-  if (inverseNodeMass > 0) {
-    impulse = std::min(impulse, distance * inverseStep / inverseNodeMass);
-  }
-  if (!(impulse > 0) || !std::isfinite(impulse)) {
+  const btScalar impulse = exchangedImpulse(distance, inverseNodeMass, row.inverseMass, closing, inverseStep);
+  if (impulse == 0) {
     return 0;
   }
   tool.applyAlongRow(-impulse);

@@ -78,7 +78,7 @@ struct ToolState {
   /// The impulses ThinTool applied to the dynamic tool since the soft-body solver began this step
   /// (SoftBodySolver::predictMotion), and that step's length (s; 0 before the first).
   mutable AppliedImpulse applied;
-  btScalar appliedStep = 0;
+  btScalar stepLength = 0;
   Wrench holdWrench;  // this step's, torque about the world's origin
   Index holdNodesShared = 0;
   Pose lastFiniteBodyPose;  // the report's frame when the body's transform is not finite

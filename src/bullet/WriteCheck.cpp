@@ -33,12 +33,12 @@ BodyVelocities::BodyVelocities(const btRigidBody* body) : m_body(body) {
 BodyVelocities::BodyVelocities(const DynamicBody& body) : BodyVelocities(body.rigid()) {
   if (body.rigid() != nullptr || !body) return;
   m_link = &body;
-  m_linkFinite = body.velocitiesFinite();
+  m_linkFinite = body.linkVelocitiesFinite();
 }
 
 void BodyVelocities::check(Index& count) const {
   if (m_link != nullptr) {
-    const bool madeNonFinite = m_linkFinite && !m_link->velocitiesFinite();
+    const bool madeNonFinite = m_linkFinite && !m_link->linkVelocitiesFinite();
     THINTOOL_ASSERT(!madeNonFinite);
     count += madeNonFinite ? 1 : 0;
   }
