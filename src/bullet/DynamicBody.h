@@ -3,12 +3,12 @@
 #pragma once
 
 // A dynamic tool's body as the tissue's reactions see it: a dynamic btRigidBody, or a link of a
-// Featherstone btMultiBody that its joints or its free base let move. Both give, at a point and
-// along a direction, the body's speed and the inverse of its effective mass there, and take an
-// impulse there. A rigid body's effective mass counts its rotation, as the normal row of a
-// sequential-impulse solver such as Box2D's does; a link's comes from the multibody's contact
-// Jacobian J and its articulated mass matrix M, 1 / (J M⁻¹ Jᵀ), and the impulse changes the joint
-// velocities by M⁻¹ Jᵀ, as Bullet's own multibody contacts do (btMultiBodyConstraint). Bullet
+// Featherstone btMultiBody that its joints or its free base let move. A rigid body's row (its speed
+// and effective mass at a point along a direction, rotation included, as the normal row of a
+// sequential-impulse solver such as Box2D's) is ToolReaction.cpp's; a link's comes from the
+// multibody's contact Jacobian J and its articulated mass matrix M, 1 / (J M⁻¹ Jᵀ), and an impulse
+// changes the joint velocities by M⁻¹ Jᵀ, as Bullet's own multibody contacts do
+// (btMultiBodyConstraint). Bullet
 // refreshes the factors of M in each step's forward dynamics; in the collision pass they are the
 // previous step's, one step stale, and before a multibody's first step they are zero, which makes
 // the link immovable (no exchange) for that step.
