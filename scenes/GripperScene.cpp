@@ -34,6 +34,7 @@ constexpr double kFingerMass = 0.3;            // kg
 const btVector3 kFingerHalf(0.01f, 0.08f, 0.1f);  // m: 2 cm thick, 16 cm tall, 20 cm deep
 constexpr double kFingerStart = 0.16;          // m, each finger's centre from the gripper's axis
 constexpr double kCloseSpeed = 0.1;            // m/s, each finger
+constexpr double kCloseGain = 20;              // 1/s: the finger's speed per metre from its closed position
 constexpr double kLiftSpeed = 0.2;             // m/s
 constexpr double kBaseHeight = 0.5;            // m: the lift's carriage, clear of the body
 constexpr double kFingerDrop = 0.4;            // m: the fingers' centres below it, at the body's mid-height
@@ -137,7 +138,7 @@ struct Gripper {
   void closeTo(double liftSpeed, double closed) {
     motors[0]->setVelocityTarget(btScalar(liftSpeed));
     for (int f = 1; f <= 2; ++f) {
-      const double speed = std::clamp(20 * (closed - body.getJointPos(f)), -kCloseSpeed, kCloseSpeed);
+      const double speed = std::clamp(kCloseGain * (closed - body.getJointPos(f)), -kCloseSpeed, kCloseSpeed);
       motors[f]->setVelocityTarget(btScalar(speed));
     }
   }
