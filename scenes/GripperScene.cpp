@@ -223,6 +223,7 @@ GripperRun runGripper(const GripperSettings& settings) {
   double lastMomentum = verticalMomentum(*body);
   const double gripperWeight = (kCarriageMass + 2 * kFingerMass) * kGravity;
   int loadSteps = 0;
+  int stepsTaken = 0;
   double wallSeconds = 0;
   for (int step = 0; step < open; ++step) {
     if (step < settle) {
@@ -268,18 +269,21 @@ GripperRun runGripper(const GripperSettings& settings) {
       run.slip = (fingerHeight - meanHeight(*body)) - sinkAtLift;
     }
     lastMomentum = momentum;
+    ++stepsTaken;
+    if (settings.observer && !settings.observer(world, tools, stepsTaken * dt)) break;
   }
   run.afterRelease = meanHeight(*body) - restHeight;
-  run.grip /= loadSteps;
-  run.liftLoad /= loadSteps;
-  run.bodyLoad /= loadSteps;
-  run.reportedLoad /= loadSteps;
+  const double loadDivisor = std::max(loadSteps, 1);
+  run.grip /= loadDivisor;
+  run.liftLoad /= loadDivisor;
+  run.bodyLoad /= loadDivisor;
+  run.reportedLoad /= loadDivisor;
   for (const BoxGroundTruth& truth : truths) {
     run.crossed += truth.metrics().crossed;
     run.deepest = std::max(run.deepest, truth.metrics().maxPenetration);
     run.piercedSteps += truth.metrics().piercedSteps;
   }
-  run.wallMilliseconds = 1000 * wallSeconds / open;
+  run.wallMilliseconds = 1000 * wallSeconds / std::max(stepsTaken, 1);
 
   for (int f = 0; f < 2; ++f) {
     if (tools[f] != nullptr) removeTool(world, *gripper.fingers[f]);

@@ -10,7 +10,15 @@
 /// the ground, lift it, hold it still and let it go. Stock Bullet meets the fingers with its own
 /// soft–multibody contact; ThinTool registers each finger link as a tool, with friction.
 
+#include <array>
+#include <functional>
 #include <string>
+
+class btSoftMultiBodyDynamicsWorld;
+
+namespace thintool {
+class Tool;
+}
 
 namespace thintool::scenes {
 
@@ -25,6 +33,10 @@ struct GripperSettings {
   double squeeze = 0.01;           ///< m, how far each finger is driven into the body
   double liftHeight = 0.3;         ///< m
   double bodyMass = 0.5;           ///< kg
+  /// Called after every step with the world, the fingers' tools (null with stock Bullet) and the
+  /// time (s): a viewer's frame, say. Returning false ends the run there, and the run's figures
+  /// cover the steps taken (those of a phase not reached stay 0).
+  std::function<bool(const btSoftMultiBodyDynamicsWorld&, const std::array<Tool*, 2>&, double)> observer;
 };
 
 /// What the grasp did. Phases: settle 0.5 s, close 1.5 s, lift liftHeight at 0.2 m/s, hold 2 s,

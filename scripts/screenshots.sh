@@ -11,3 +11,4 @@ run build/examples/plate_into_ball/plate_into_ball --stock --screenshot docs/vie
 run build/examples/clamp_demo/clamp_demo --screenshot docs/viewer-clamp.png
 run build/examples/clamp_demo/clamp_demo --vessel --screenshot docs/viewer-clamp-vessel.png
 run build/examples/clamp_demo/clamp_demo --session --vessel --screenshot docs/viewer-clamp-session.png
+run build/examples/gripper_grasp/gripper_grasp --screenshot docs/viewer-gripper.png

@@ -7,33 +7,106 @@
 // finger link registered as a tool. Headless. One table: whether the body rose with the fingers,
 // how far it slipped, nodes through a finger (the evaluation suite's ground truth), the squeeze,
 // the load the lift's motor carries against the body's momentum balance, and the time a step.
+// Where the viewer is built, --view shows one grasp (the cube, or --cable; ThinTool's, or --stock)
+// and --screenshot writes its frame at 4 s, lifted and held, to a PNG.
 //
-//   gripper_grasp [--dt SECONDS] [--grip NEWTONS]
+//   gripper_grasp [--dt SECONDS] [--grip NEWTONS] [--view | --screenshot FILE.png] [--cable] [--stock]
 
 #include "GripperScene.h"
+
+#ifdef THINTOOL_HAVE_VIEWER
+#include "Viewer.h"
+#endif
 
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <stdexcept>
+#include <string>
 
 using namespace thintool::scenes;
 
+namespace {
+
+#ifdef THINTOOL_HAVE_VIEWER
+// One grasp in the viewer: every step drawn, or the step at 4 s written to screenshotPath.
+int view(GripperSettings settings, const std::string& screenshotPath) {
+  thintool::viewer::ViewerSettings viewerSettings;
+  viewerSettings.visible = screenshotPath.empty();
+  viewerSettings.title = "ThinTool: gripper";
+  try {
+    thintool::viewer::Viewer window(viewerSettings);
+    window.camera().target = btVector3(0, 0.3f, 0);
+    window.camera().distance = 1.4f;
+    bool written = false;
+    settings.observer = [&](const btSoftMultiBodyDynamicsWorld& world, const std::array<thintool::Tool*, 2>& fingers,
+                            double time) {
+      thintool::viewer::Overlay overlay;
+      for (thintool::Tool* finger : fingers) {
+        if (finger != nullptr) overlay.tools.push_back(finger);
+      }
+      char line[96];
+      std::snprintf(line, sizeof line, "%s, %s: t %.2f s", graspedBodyName(settings.body),
+                    settings.thinTool ? "ThinTool" : "stock Bullet", time);
+      overlay.panelLines.emplace_back(line);
+      if (screenshotPath.empty()) return window.frame(world, overlay);
+      if (time < 4) return true;
+      written = window.renderToFile(world, overlay, screenshotPath);
+      return false;
+    };
+    runGripper(settings);
+    if (screenshotPath.empty()) return 0;
+    if (!written) {
+      std::fprintf(stderr, "gripper_grasp: cannot write %s\n", screenshotPath.c_str());
+      return 1;
+    }
+    std::printf("wrote %s\n", screenshotPath.c_str());
+    return 0;
+  } catch (const std::runtime_error& error) {
+    std::fprintf(stderr, "%s\n", error.what());
+    return 1;
+  }
+}
+#endif
+
+}  // namespace
+
 int main(int argc, char** argv) {
   GripperSettings base;
+  bool viewing = false;
+  std::string screenshot;
   for (int i = 1; i < argc; ++i) {
     const bool hasValue = i + 1 < argc;
     if (std::strcmp(argv[i], "--dt") == 0 && hasValue) {
       base.timeStep = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--grip") == 0 && hasValue) {
       base.gripForce = std::atof(argv[++i]);
+    } else if (std::strcmp(argv[i], "--view") == 0) {
+      viewing = true;
+    } else if (std::strcmp(argv[i], "--screenshot") == 0 && hasValue) {
+      viewing = true;
+      screenshot = argv[++i];
+    } else if (std::strcmp(argv[i], "--cable") == 0) {
+      base.body = GraspedBody::Cable;
+    } else if (std::strcmp(argv[i], "--stock") == 0) {
+      base.thinTool = false;
     } else {
-      std::fprintf(stderr, "usage: gripper_grasp [--dt SECONDS] [--grip NEWTONS]\n");
+      std::fprintf(stderr, "usage: gripper_grasp [--dt SECONDS] [--grip NEWTONS] [--view | --screenshot FILE.png] "
+                           "[--cable] [--stock]\n");
       return 2;
     }
   }
   if (!(base.timeStep > 0 && base.timeStep <= 0.1) || !(base.gripForce > 0)) {
     std::fprintf(stderr, "gripper_grasp: --dt must be in (0, 0.1] s and --grip above 0 N\n");
     return 2;
+  }
+  if (viewing) {
+#ifdef THINTOOL_HAVE_VIEWER
+    return view(base, screenshot);
+#else
+    std::fprintf(stderr, "gripper_grasp: built without the viewer\n");
+    return 2;
+#endif
   }
   std::printf("| body | Bullet | rise / lift (m) | slip (mm) | after release (m) | crossed | deepest (mm) | "
               "grip (N) | lift motor's load (N) | body's m g - dp/dt (N) | reported (N) | ms a step |\n");

@@ -8,6 +8,8 @@
 #include <thintool/bullet/Tool.h>
 
 #include <BulletSoftBody/btSoftBody.h>
+#include <BulletSoftBody/btDeformableMultiBodyDynamicsWorld.h>
+#include <BulletSoftBody/btSoftMultiBodyDynamicsWorld.h>
 #include <BulletSoftBody/btSoftRigidDynamicsWorld.h>
 #include <btBulletDynamicsCommon.h>
 
@@ -259,7 +261,15 @@ btVector3 Viewer::takeRightDrag(float metresPerPixel) {
   return move;
 }
 
-void Viewer::drawWorld(const btSoftRigidDynamicsWorld& world, const Overlay& overlay) const {
+WorldView::WorldView(const btSoftRigidDynamicsWorld& world) : objects(world), softBodies(world.getSoftBodyArray()) {}
+
+WorldView::WorldView(const btSoftMultiBodyDynamicsWorld& world)
+    : objects(world), softBodies(world.getSoftBodyArray()) {}
+
+WorldView::WorldView(const btDeformableMultiBodyDynamicsWorld& world)
+    : objects(world), softBodies(world.getSoftBodyArray()) {}
+
+void Viewer::drawWorld(const WorldView& world, const Overlay& overlay) const {
   const int w = width(), h = height();
   glViewport(0, 0, w, h);
   setColour(Palette::background);
@@ -284,7 +294,7 @@ void Viewer::drawWorld(const btSoftRigidDynamicsWorld& world, const Overlay& ove
   glEnd();
 
   // Soft bodies: faces, then their wireframe slightly in front.
-  const btSoftBodyArray& softBodies = world.getSoftBodyArray();
+  const btSoftBodyArray& softBodies = world.softBodies;
   glEnable(GL_POLYGON_OFFSET_FILL);
   glPolygonOffset(1, 1);
   for (int b = 0; b < softBodies.size(); ++b) {
@@ -311,7 +321,7 @@ void Viewer::drawWorld(const btSoftRigidDynamicsWorld& world, const Overlay& ove
   glEnd();
 
   // Rigid bodies with box shapes: the tools (the ground is drawn above).
-  const btCollisionObjectArray& objects = world.getCollisionObjectArray();
+  const btCollisionObjectArray& objects = world.objects.getCollisionObjectArray();
   for (int i = 0; i < objects.size(); ++i) {
     const btCollisionObject* object = objects[i];
     // Bullet flags a kinematic body static too (mass 0): only the ground is left out.
@@ -391,13 +401,13 @@ void Viewer::drawPanel(const Overlay& overlay) {
   renderImGui(ImGui::GetDrawData());
 }
 
-void Viewer::render(const btSoftRigidDynamicsWorld& world, const Overlay& overlay) {
+void Viewer::render(const WorldView& world, const Overlay& overlay) {
   drawWorld(world, overlay);
   drawPanel(overlay);
   glFinish();
 }
 
-bool Viewer::renderToFile(const btSoftRigidDynamicsWorld& world, const Overlay& overlay, const std::string& path) {
+bool Viewer::renderToFile(const WorldView& world, const Overlay& overlay, const std::string& path) {
   for (int settle = 0; settle < 2; ++settle) {
     render(world, overlay);
     present();

@@ -3,7 +3,8 @@
 #pragma once
 
 // The examples' OpenGL viewer (optional: built when GLFW, OpenGL and Dear ImGui are found). It
-// draws a btSoftRigidDynamicsWorld as it is: soft bodies shaded with their wireframe, box-shaped
+// draws a Bullet world with soft bodies as it is (btSoftRigidDynamicsWorld, btSoftMultiBodyDynamicsWorld
+// or btDeformableMultiBodyDynamicsWorld): soft bodies shaded with their wireframe, box-shaped
 // rigid bodies, the registered tools' sample nodes (red where they collide this step), the force
 // on each tool, and a panel of the caller's figures. An orbit camera (drag to turn, scroll to
 // zoom), keys for the caller, and a screenshot to PNG that works under Xvfb with Mesa's software
@@ -17,6 +18,12 @@
 #include <string>
 #include <vector>
 
+#include <LinearMath/btAlignedObjectArray.h>
+
+class btCollisionWorld;
+class btDeformableMultiBodyDynamicsWorld;
+class btSoftBody;
+class btSoftMultiBodyDynamicsWorld;
 class btSoftRigidDynamicsWorld;
 struct GLFWwindow;
 
@@ -65,6 +72,17 @@ struct Overlay {
   std::vector<std::array<btVector3, 2>> arrows;
 };
 
+/// What the viewer draws of a world: its collision objects and its soft bodies. Each of Bullet's
+/// worlds with soft bodies converts to it, so a world is passed as it is.
+struct WorldView {
+  WorldView(const btSoftRigidDynamicsWorld& world);
+  WorldView(const btSoftMultiBodyDynamicsWorld& world);
+  WorldView(const btDeformableMultiBodyDynamicsWorld& world);
+
+  const btCollisionWorld& objects;
+  const btAlignedObjectArray<btSoftBody*>& softBodies;
+};
+
 class Viewer {
  public:
   /// Opens the window; throws std::runtime_error when there is no display or OpenGL.
@@ -75,17 +93,17 @@ class Viewer {
 
   Camera& camera() { return m_camera; }
   /// Draws world and overlay into the back buffer.
-  void render(const btSoftRigidDynamicsWorld& world, const Overlay& overlay);
+  void render(const WorldView& world, const Overlay& overlay);
   /// Writes the frame render() drew to a PNG file; false if it could not be written. Call it
   /// before present().
   bool screenshot(const std::string& path) const;
   /// Draws world and overlay and writes the frame to a PNG file: the screenshot modes' one call.
   /// A panel that fits its text takes a frame to learn its size, so the frame is drawn three times.
-  bool renderToFile(const btSoftRigidDynamicsWorld& world, const Overlay& overlay, const std::string& path);
+  bool renderToFile(const WorldView& world, const Overlay& overlay, const std::string& path);
   /// Shows the frame and reads input; returns false once the window was asked to close.
   bool present();
   /// render() and present().
-  bool frame(const btSoftRigidDynamicsWorld& world, const Overlay& overlay) {
+  bool frame(const WorldView& world, const Overlay& overlay) {
     render(world, overlay);
     return present();
   }
@@ -105,7 +123,7 @@ class Viewer {
   static void onKey(GLFWwindow* window, int key, int scancode, int action, int mods);
   static void onScroll(GLFWwindow* window, double dx, double dy);
   void handleMouse();
-  void drawWorld(const btSoftRigidDynamicsWorld& world, const Overlay& overlay) const;
+  void drawWorld(const WorldView& world, const Overlay& overlay) const;
   void drawPanel(const Overlay& overlay);
 
   GLFWwindow* m_window = nullptr;

@@ -11,10 +11,14 @@
 
 #include <thintool/haptics/ReplayDevice.h>
 #endif
+#include "GripperScene.h"
 #include "SoftBallScene.h"
 #include "Viewer.h"
 
+#include <thintool/thintool.h>
+
 #include <BulletSoftBody/btSoftBody.h>
+#include <BulletSoftBody/btSoftMultiBodyDynamicsWorld.h>
 #include <BulletSoftBody/btSoftRigidDynamicsWorld.h>
 #include <gtest/gtest.h>
 #include <stb_image.h>
@@ -172,6 +176,59 @@ TEST(ClampScene, RendersTheJawsAndTheGraspedBodyWhereTheyAre) {
   EXPECT_TRUE(colourNear(image, x, y, Palette::tool)) << "no jaw colour at " << x << ", " << y;
   // The sphere's top, above the jaws (they are 0.6 m tall at its equator).
   ASSERT_TRUE(viewer.camera().project(bodyCentre + btVector3(0, 0.85f, 0), image.width, image.height, x, y));
+  EXPECT_TRUE(colourNear(image, x, y, Palette::softBody)) << "no soft-body colour at " << x << ", " << y;
+}
+
+// A soft multibody world: the gripper's finger links, drawn as the tools they are, and the cube they
+// hold up.
+TEST(GripperScene, RendersTheFingersAndTheHeldCubeWhereTheyAre) {
+  ViewerSettings viewerSettings;
+  viewerSettings.visible = false;
+  Viewer viewer(viewerSettings);
+  viewer.camera().target = btVector3(0, 0.3f, 0);
+  viewer.camera().distance = 1.4f;
+  Image image;
+  btVector3 fingerPoint, cubePoint;
+  scenes::GripperSettings settings;
+  settings.observer = [&](const btSoftMultiBodyDynamicsWorld& world, const std::array<Tool*, 2>& fingers,
+                          double time) {
+    if (time < 4) return true;  // lifted and held
+    EXPECT_EQ(world.getSoftBodyArray().size(), 1);
+    const btSoftBody& cube = *world.getSoftBodyArray()[0];
+    Overlay overlay;
+    overlay.tools = {fingers[0], fingers[1]};
+    viewer.render(world, overlay);
+    EXPECT_TRUE(viewer.screenshot("viewer_gripper.png"));
+    image = load("viewer_gripper.png");
+    // The middle of a finger's outer face, on the finger whose outer face the camera sees.
+    const btVector3 eye = viewer.camera().eye();
+    for (Tool* finger : fingers) {
+      const btTransform pose = finger->body().getWorldTransform();
+      const btVector3 outward = pose.getBasis().getColumn(0) * (pose.getOrigin().x() < 0 ? -1 : 1);
+      if (outward.dot(eye - pose.getOrigin()) > 0) fingerPoint = pose.getOrigin() + outward * 0.0105f;
+    }
+    // The middle of the cube's side turned to the camera along z.
+    const btScalar towardsCamera = eye.z() > 0 ? 1 : -1;
+    btScalar front = -BT_LARGE_FLOAT;
+    for (int n = 0; n < cube.m_nodes.size(); ++n) front = btMax(front, cube.m_nodes[n].m_x.z() * towardsCamera);
+    btVector3 sum(0, 0, 0);
+    int count = 0;
+    for (int n = 0; n < cube.m_nodes.size(); ++n) {
+      if (cube.m_nodes[n].m_x.z() * towardsCamera > front - 0.01f) {
+        sum += cube.m_nodes[n].m_x;
+        ++count;
+      }
+    }
+    cubePoint = sum / btScalar(std::max(count, 1));
+    return false;
+  };
+  scenes::runGripper(settings);
+  ASSERT_FALSE(image.rgb.empty());
+  EXPECT_GT(cubePoint.y(), 0.3) << "the cube is not held up at 4 s";  // its centre rests 0.1 m up
+  float x = 0, y = 0;
+  ASSERT_TRUE(viewer.camera().project(fingerPoint, image.width, image.height, x, y));
+  EXPECT_TRUE(colourNear(image, x, y, Palette::tool)) << "no finger colour at " << x << ", " << y;
+  ASSERT_TRUE(viewer.camera().project(cubePoint, image.width, image.height, x, y));
   EXPECT_TRUE(colourNear(image, x, y, Palette::softBody)) << "no soft-body colour at " << x << ", " << y;
 }
 
