@@ -566,11 +566,12 @@ void SoftBodySolverImpl::solveConstraints(btScalar timeStep) {
     m_piecesNear = 0;
     bool moved = false;
     for (Tool* tool : tools) {
-      moved = separate(*tool, false) || moved;
+      moved = separate(*tool, Stage::Rounds) || moved;
     }
     if (!moved || m_piecesNear <= 1) break;
     if (pass + 1 == kMostPasses) {
-      for (Tool* tool : tools) separate(*tool, true);
+      for (Tool* tool : tools) separate(*tool, Stage::LastResort);
+      for (Tool* tool : tools) separate(*tool, Stage::NodesLast);
     }
   }
   m_hasStepReach = false;
@@ -820,7 +821,7 @@ void SoftBodySolverImpl::guardEnergy() {
   }
 }
 
-bool SoftBodySolverImpl::separate(Tool& tool, bool lastResort) {
+bool SoftBodySolverImpl::separate(Tool& tool, Stage stage) {
   const auto start = std::chrono::steady_clock::now();
   const SeparationSettings& settings = tool.state().options.separation;
   const Pose now = toPose(tool.body().getWorldTransform());
@@ -836,7 +837,7 @@ bool SoftBodySolverImpl::separate(Tool& tool, bool lastResort) {
     for (int s = 0; s < m_softBodySet.size(); ++s) {
       btSoftBody& softBody = *m_softBodySet[s];
       if (detail::ignores(softBody, tool.body()) || !detail::lastWordActsOn(detail::stockReason(softBody))) continue;
-      const SeparationCounts piece = separatePiece(tool, tool.piece(p), motion, softBody, lastResort, m_nearPieces);
+      const SeparationCounts piece = separatePiece(tool, tool.piece(p), motion, softBody, stage, m_nearPieces);
       moved = moved || piece.nodesMoved > 0 || piece.facesMoved > 0;
       counts.accumulate(piece);
     }
@@ -1065,12 +1066,13 @@ void SoftBodySolverImpl::addPatchFace(const btSoftBody& softBody, const SoftBody
 // those of every moved node join the patch, and the stage runs again, until none is missing.
 SeparationCounts SoftBodySolverImpl::separateGrowingPatch(Tool& tool, const ToolModel& piece, const PieceMotion& motion,
                                                      const btSoftBody& softBody, const SoftBodyCache& cache,
-                                                     bool lastResort, const std::vector<NearPiece>& near) {
+                                                     Stage stage, const std::vector<NearPiece>& near) {
   SeparationCounts counts;
   for (int extension = 0;; ++extension) {
     const SeparationSettings& settings = tool.state().options.separation;
-    const SeparationCounts run = lastResort ? carryMeetingFaces(piece, motion, settings, m_patch)
-                                            : separateFromPiece(piece, motion, settings, m_patch, near);
+    const SeparationCounts run = stage == Stage::LastResort  ? carryMeetingFaces(piece, motion, settings, m_patch)
+                                 : stage == Stage::NodesLast ? keepNodesOutside(piece, motion, settings, m_patch)
+                                                             : separateFromPiece(piece, motion, settings, m_patch, near);
     counts.nodesMoved += run.nodesMoved;
     counts.facesMoved += run.facesMoved;
     counts.nodesInside = run.nodesInside;
@@ -1121,7 +1123,7 @@ void SoftBodySolverImpl::keepOutsideClosedBody(Tool& tool, const ToolModel& piec
       m_patch.moved[v] = 0;
     }
     const SeparationCounts bothReadings = counts;
-    counts = separateGrowingPatch(tool, piece, motion.alongChord(), softBody, cache, false, near);
+    counts = separateGrowingPatch(tool, piece, motion.alongChord(), softBody, cache, Stage::Rounds, near);
     counts.nodesMoved += bothReadings.nodesMoved;
     counts.facesMoved += bothReadings.facesMoved;
     if (!endsInside()) return;
@@ -1133,7 +1135,7 @@ void SoftBodySolverImpl::keepOutsideClosedBody(Tool& tool, const ToolModel& piec
 }
 
 SeparationCounts SoftBodySolverImpl::separatePiece(Tool& tool, const ToolModel& piece, const PieceMotion& motion,
-                                               btSoftBody& softBody, bool lastResort,
+                                               btSoftBody& softBody, Stage stage,
                                                const std::vector<NearPiece>& near) {
   const Real clearance = tool.state().options.separation.clearance;
   const Aabb swept = sweptBounds(piece.bounds, motion).expanded(clearance);
@@ -1210,8 +1212,8 @@ SeparationCounts SoftBodySolverImpl::separatePiece(Tool& tool, const ToolModel& 
   }
   ++m_piecesNear;
 
-  SeparationCounts counts = separateGrowingPatch(tool, piece, motion, softBody, cache, lastResort, near);
-  if (!lastResort && cache.closed && motion.samples() > 1) {
+  SeparationCounts counts = separateGrowingPatch(tool, piece, motion, softBody, cache, stage, near);
+  if (stage == Stage::Rounds && cache.closed && motion.samples() > 1) {
     keepOutsideClosedBody(tool, piece, motion, softBody, cache, near, counts);
   }
   for (Index f : m_patchFaces) m_faceInPatch[f] = 0;

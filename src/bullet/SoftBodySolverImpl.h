@@ -64,11 +64,13 @@ class SoftBodySolverImpl {
   // Whether the tool's pair with the body is live this step.
   static bool hasLivePair(const Tool& tool, const btSoftBody& body);
 
-  // One pass of the tool's pieces over the soft bodies; returns whether it moved anything. With
-  // lastResort, each piece only carries the faces that still meet it (carryMeetingFaces).
-  bool separate(Tool& tool, bool lastResort);
+  // What one pass of the last word does: its rounds (separateFromPiece), once the passes ran out
+  // the last resort (carryMeetingFaces), and after it the nodes' last say (keepNodesOutside).
+  enum class Stage { Rounds, LastResort, NodesLast };
+  // One pass of the tool's pieces over the soft bodies; returns whether it moved anything.
+  bool separate(Tool& tool, Stage stage);
   SeparationCounts separatePiece(Tool& tool, const ToolModel& piece, const PieceMotion& motion, btSoftBody& softBody,
-                                 bool lastResort, const std::vector<NearPiece>& near);
+                                 Stage stage, const std::vector<NearPiece>& near);
   // Fills m_nearPieces with the pieces of every tool whose reach meets that of the tool's piece p.
   void findNearPieces(const Tool& tool, Index p, const PieceMotion& motion);
 
@@ -134,7 +136,7 @@ class SoftBodySolverImpl {
   // The stage on the gathered patch, run again with the faces of the nodes it moved until none is
   // missing.
   SeparationCounts separateGrowingPatch(Tool& tool, const ToolModel& piece, const PieceMotion& motion,
-                                        const btSoftBody& softBody, const SoftBodyCache& cache, bool lastResort,
+                                        const btSoftBody& softBody, const SoftBodyCache& cache, Stage stage,
                                         const std::vector<NearPiece>& near);
   // A turning piece whose centre ends the step inside a closed body it was outside of at the start
   // is put back outside (see the definition).

@@ -628,6 +628,21 @@ Index shiftGroup(const Pose& end, const Vec3& shift, const Vec3& direction, Sepa
   return moved;
 }
 
+// A movable node that judgeNode sends back goes out by its face, the clearance beyond it.
+NodeVerdict putNodeOutside(const ToolModel& piece, const PieceMotion& motion, const Pose* poses, Real clearance,
+                           Index v, SeparationPatch& patch) {
+  Vec3 local;
+  const NodeVerdict verdict =
+      judgeNode(piece, motion, poses, patch.startPositions[v], patch.positions[v], clearance, local);
+  if (!verdict.fix) return verdict;
+  const Plane& plane = piece.planes[verdict.plane];
+  const Pose& end = motion.end();
+  patch.positions[v] = end.apply(local + plane.normal * (clearance - plane.signedDistance(local)));
+  patch.moved[v] = 1;
+  patch.directions[v] = end.applyToDirection(plane.normal);
+  return verdict;
+}
+
 // When the rounds run out with faces still pierced, their movable nodes move together, by one
 // translation that clears every face among them and leaves each of the nodes outside: faces that
 // want a shared node on opposite sides (the fan of faces round a node a needle runs through,
@@ -1049,17 +1064,10 @@ SeparationCounts separateFromPiece(const ToolModel& piece, const PieceMotion& mo
     }
     for (Index v = 0; v < vertexCount; ++v) {
       if (!(patch.inverseMasses[v] > 0) || (round > 0 && patch.movedInRound[v] != round)) continue;
-      Vec3 local;
-      const NodeVerdict verdict =
-          judgeNode(piece, motion, poses, patch.startPositions[v], patch.positions[v], clearance, local);
+      const NodeVerdict verdict = putNodeOutside(piece, motion, poses, clearance, v, patch);
       if (round == 0 && verdict.sparedByArc) ++counts.arcSpared;
       if (!verdict.fix) continue;
-      const Plane& plane = piece.planes[verdict.plane];
-      const Vec3 corrected = local + plane.normal * (clearance - plane.signedDistance(local));
-      patch.positions[v] = end.apply(corrected);
-      patch.moved[v] = 1;
       patch.movedInRound[v] = round;
-      patch.directions[v] = end.applyToDirection(plane.normal);
       ++counts.nodesMoved;
       changed = true;
     }
@@ -1118,6 +1126,21 @@ SeparationCounts carryMeetingFaces(const ToolModel& piece, const PieceMotion& mo
   counts.nodesMoved += slid;
   counts.nodesInside = 0;
   counts.facesPierced = 0;
+  const auto nothingKnown = [](auto) { return false; };
+  countWhatIsLeft(piece, motion.end(), patch, settings.clearance / 2, nothingKnown, nothingKnown, counts);
+  return counts;
+}
+
+SeparationCounts keepNodesOutside(const ToolModel& piece, const PieceMotion& motion,
+                                  const SeparationSettings& settings, SeparationPatch& patch) {
+  SeparationCounts counts;
+  THINTOOL_ASSERT(patch.consistent());
+  Pose poses[kMostSamples + 1];
+  for (int k = 0; k <= motion.samples(); ++k) poses[k] = motion.at(Real(k) / Real(motion.samples()));
+  for (Index v = 0; v < patch.vertexCount(); ++v) {
+    if (!(patch.inverseMasses[v] > 0)) continue;
+    if (putNodeOutside(piece, motion, poses, settings.clearance, v, patch).fix) ++counts.nodesMoved;
+  }
   const auto nothingKnown = [](auto) { return false; };
   countWhatIsLeft(piece, motion.end(), patch, settings.clearance / 2, nothingKnown, nothingKnown, counts);
   return counts;
