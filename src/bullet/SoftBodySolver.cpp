@@ -1179,14 +1179,20 @@ SeparationCounts SoftBodySolverImpl::separatePiece(Tool& tool, const ToolModel& 
   m_patchFaces.clear();
   // Faces looked at and found away are marked 2 for the rest of the gather, so each is boxed once.
   // A face's box reaches no further than the face reach from any of its nodes: a face with a node
-  // that is not near cannot meet the piece's reach, and is not boxed.
-  for (const Index node : m_nearNodes) m_isNearNode[node] = 1;
+  // that is not near cannot meet the piece's reach, and is not boxed. Nor is one with a node whose
+  // move meets the piece's reach (a patch vertex so far, marked 2): its box holds that move.
+  for (const Index node : m_nearNodes) m_isNearNode[node] = m_vertexOfNode[node] != kInvalidIndex ? 2 : 1;
   for (const Index node : m_nearNodes) {
     for (Index k = cache.begin[node]; k < cache.begin[node + 1]; ++k) {
       const Index f = cache.faces[k];
       if (m_faceInPatch[f] != 0) continue;
       const std::array<Index, 3>& corners = cache.faceNodes[f];
-      if (m_isNearNode[corners[0]] == 0 || m_isNearNode[corners[1]] == 0 || m_isNearNode[corners[2]] == 0) continue;
+      const unsigned char nearness[3] = {m_isNearNode[corners[0]], m_isNearNode[corners[1]], m_isNearNode[corners[2]]};
+      if (nearness[0] == 0 || nearness[1] == 0 || nearness[2] == 0) continue;
+      if (nearness[0] == 2 || nearness[1] == 2 || nearness[2] == 2) {
+        addPatchFace(softBody, cache, f);
+        continue;
+      }
       Aabb box;
       for (const Index n : corners) {
         const btSoftBody::Node& corner = softBody.m_nodes[static_cast<int>(n)];

@@ -222,7 +222,8 @@ class SoftBodySolverImpl {
   std::vector<SoftBodyCache> m_caches;
   std::vector<BodyEnergy> m_energy;  // one per soft body of the world, this step
   std::vector<Index> m_nearNodes;  // soft nodes near the piece's reach grown by the face reach
-  std::vector<unsigned char> m_isNearNode;  // soft node -> whether m_nearNodes has it, during a gather
+  // soft node -> during a gather, 0: not in m_nearNodes, 1: in it, 2: and its move meets the reach
+  std::vector<unsigned char> m_isNearNode;
   // Every active tool's pieces, swept over this step and grown by their clearance; hasStepReach is
   // false until the step's tools are known.
   Aabb m_stepReach;
