@@ -15,9 +15,9 @@ from benchmark_rows import fastest_rows, number
 repetitions = sys.argv[1] if len(sys.argv) > 1 else "5"
 fastest = {(name, int(faces), int(margin)): row
            for (name, faces, margin, *_), row in fastest_rows("Handler/", repetitions,
-                                                              ("real_time", "detectUs", "lastWordUs", "sharedPassUs")).items()}
+                                                              ("real_time", "detectUs", "lastWordUs", "sharedPassUs", "guardUs")).items()}
 print("| faces, margin | stock | ThinTool: stage / detection | ratio to stock: stage / detection "
-      "| last word (of which shared with Bullet) | ratio to stock: stage + last word, + its own part "
+      "| last word (of which shared with Bullet; energy guard) | ratio to stock: stage + last word, + its own part "
       "| paper: stage / detection | ThinTool faces gathered (meeting the swept box) "
       "| faces its walk met | swept tests | stock nodes in its box |")
 print("|---|---|---|---|---|---|---|---|---|---|---|")
@@ -29,7 +29,7 @@ for faces, margin in sizes:
     base = stock["real_time"]
     print(f"| {faces:,}, {margin} mm | {number(base)} | {number(tool['real_time'])} / {number(tool['detectUs'])} "
           f"| {tool['real_time'] / base:.2f} / {tool['detectUs'] / base:.2f} "
-          f"| {number(tool['lastWordUs'])} ({number(tool['sharedPassUs'])}) "
+          f"| {number(tool['lastWordUs'])} ({number(tool['sharedPassUs'])}; {number(tool['guardUs'])}) "
           f"| {(tool['real_time'] + tool['lastWordUs']) / base:.2f}, "
           f"{(tool['real_time'] + tool['lastWordUs'] - tool['sharedPassUs']) / base:.2f} "
           f"| {number(paper['real_time'])} / {number(paper['detectUs'])} "

@@ -22,7 +22,9 @@
 // ThinTool the response is part of the collision stage. ThinTool's last word runs later in the
 // step, after Bullet's soft solve, and is not replayed: lastWordUs is its time in the real step
 // (one sample, with cold caches), sharedPassUs the part of it spent in the pass over the nodes that
-// it shares with Bullet's velocity update, which a stock step makes too. The detectUs and
+// it shares with Bullet's velocity update, which a stock step makes too, and guardUs the part spent
+// in the energy guard's passes over the ball's nodes before Bullet's solve and after the last word.
+// The detectUs and
 // responseUs counters are ThinTool's own clock for its two parts (Tool::report), a cross-check of
 // the measured time, and detectUs alone is the detection stage.
 //
@@ -93,6 +95,7 @@ struct Replay {
   double stepMicroseconds = 0;
   double stepLastWordMicroseconds = 0;  // ThinTool's last word in that step (after Bullet's soft solve)
   double stepSharedPassMicroseconds = 0;  // of it, the pass over the nodes shared with Bullet's own
+  double stepGuardMicroseconds = 0;       // of it, the energy guard's passes
   long stepContacts = 0;
   double stepDetectMicroseconds = 0;  // ThinTool's own clock in the real step
   double stepFacesNear = 0;
@@ -155,6 +158,7 @@ struct Replay {
       stepFacesNear = d.detection.facesGathered;
       stepLastWordMicroseconds = d.lastWord.microseconds;
       stepSharedPassMicroseconds = d.lastWord.sharedPassMicroseconds;
+      stepGuardMicroseconds = d.lastWord.energyGuardMicroseconds;
     } else {
       stepContacts = countStockContacts();
     }
@@ -334,6 +338,7 @@ void run(benchmark::State& state, Algorithm algorithm) {
     state.counters["responseUs"] = respond / n;
     state.counters["lastWordUs"] = replay.stepLastWordMicroseconds;
     state.counters["sharedPassUs"] = replay.stepSharedPassMicroseconds;
+    state.counters["guardUs"] = replay.stepGuardMicroseconds;
     state.counters["stepDetectUs"] = replay.stepDetectMicroseconds;
     state.counters["stepFacesNear"] = replay.stepFacesNear;
   } else {

@@ -586,7 +586,9 @@ void SoftBodySolverImpl::solveConstraints(btScalar timeStep) {
                           std::chrono::duration<double, std::micro>(guardEnd - guardStart).count()) /
                          double(guarding);
     for (Tool* tool : m_configuration.tools()) {
-      if (tool->state().options.energyGuard.enabled) tool->state().lastWord.microseconds += share;
+      if (!tool->state().options.energyGuard.enabled) continue;
+      tool->state().lastWord.microseconds += share;
+      tool->state().lastWord.energyGuardMicroseconds += share;
     }
   }
   for (Tool* tool : tools) {

@@ -52,6 +52,9 @@ struct LastWordDiagnostics {
   /// velocity update after its solve (as btSoftBody::solveConstraints's), which a step without
   /// ThinTool makes too: what the stage adds to the step is microseconds less about this.
   double sharedPassMicroseconds = 0;
+  /// Of microseconds, this tool's share of the energy guard's passes over the guarded soft bodies'
+  /// nodes, before Bullet's solve and after the last word: they read every node of such a body.
+  double energyGuardMicroseconds = 0;
   /// The energy guard (EnergyGuardSettings), over the soft bodies near the tool: nodes it slowed
   /// to the speed bound, and kinetic energy it took out to meet the energy bound (J).
   Index nodesSlowed = 0;
