@@ -4,7 +4,9 @@
 
 #include <BulletSoftBody/btDefaultSoftBodySolver.h>
 #include <BulletSoftBody/btSoftBodyHelpers.h>
+#include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>
 #include <BulletSoftBody/btSoftBodyRigidBodyCollisionConfiguration.h>
+#include <BulletSoftBody/btSoftMultiBodyDynamicsWorld.h>
 #include <BulletSoftBody/btSoftRigidDynamicsWorld.h>
 #include <btBulletDynamicsCommon.h>
 
@@ -17,6 +19,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <vector>
 
 namespace thintool::scenes {
@@ -160,11 +163,15 @@ const char* toolShapeName(ToolShape shape) {
   return "split plate";
 }
 
+const char* worldKindName(WorldKind world) {
+  return world == WorldKind::SoftRigid ? "btSoftRigidDynamicsWorld" : "btSoftMultiBodyDynamicsWorld";
+}
+
 struct SoftBallScene::Bullet {
   std::unique_ptr<btCollisionConfiguration> configuration;
   std::unique_ptr<btCollisionDispatcher> dispatcher;
   btDbvtBroadphase broadphase;
-  btSequentialImpulseConstraintSolver constraintSolver;
+  std::unique_ptr<btConstraintSolver> constraintSolver;
   std::unique_ptr<btSoftBodySolver> softSolver;
   btBoxShape groundShape{btVector3(20, 1, 20)};
   btDefaultMotionState groundMotion;
@@ -189,10 +196,22 @@ SoftBallScene::SoftBallScene(const SceneSettings& settings) : m_settings(setting
     b.softSolver = std::make_unique<btDefaultSoftBodySolver>();
   }
   b.dispatcher = std::make_unique<btCollisionDispatcher>(b.configuration.get());
-  m_world = std::make_unique<btSoftRigidDynamicsWorld>(b.dispatcher.get(), &b.broadphase, &b.constraintSolver,
-                                                       b.configuration.get(), b.softSolver.get());
+  if (settings.world == WorldKind::SoftRigid) {
+    b.constraintSolver = std::make_unique<btSequentialImpulseConstraintSolver>();
+    auto world = std::make_unique<btSoftRigidDynamicsWorld>(b.dispatcher.get(), &b.broadphase, b.constraintSolver.get(),
+                                                            b.configuration.get(), b.softSolver.get());
+    m_softRigidWorld = world.get();
+    m_world = std::move(world);
+  } else {
+    auto solver = std::make_unique<btMultiBodyConstraintSolver>();
+    auto world = std::make_unique<btSoftMultiBodyDynamicsWorld>(b.dispatcher.get(), &b.broadphase, solver.get(),
+                                                                b.configuration.get(), b.softSolver.get());
+    b.constraintSolver = std::move(solver);
+    m_softMultiBodyWorld = world.get();
+    m_world = std::move(world);
+  }
   m_world->setGravity(btVector3(0, -10, 0));
-  btSoftBodyWorldInfo& info = m_world->getWorldInfo();
+  btSoftBodyWorldInfo& info = worldInfo();
   info.m_gravity = m_world->getGravity();
   info.m_sparsesdf.setDefaultVoxelsz(btScalar(variant.voxel));
   info.m_sparsesdf.Reset();
@@ -215,7 +234,11 @@ SoftBallScene::SoftBallScene(const SceneSettings& settings) : m_settings(setting
   m_ball->m_cfg.kDP = btScalar(1 - std::pow(0.95, 60 * settings.timeStep / settings.substeps));
   m_ball->setTotalMass(1);
   m_ball->getCollisionShape()->setMargin(btScalar(variant.margin));
-  m_world->addSoftBody(m_ball);
+  if (m_softRigidWorld != nullptr) {
+    m_softRigidWorld->addSoftBody(m_ball);
+  } else {
+    m_softMultiBodyWorld->addSoftBody(m_ball);
+  }
 
   const btScalar halfThickness = btScalar(settings.toolThickness / 2);
   const btVector3 half = settings.tool == ToolShape::Needle ? btVector3(0.5, halfThickness, halfThickness)
@@ -260,7 +283,11 @@ void SoftBallScene::tearDown() {
     thintool::removeTool(*m_world, *m_tool);
   }
   m_world->removeRigidBody(m_tool);
-  m_world->removeSoftBody(m_ball);
+  if (m_softRigidWorld != nullptr) {
+    m_softRigidWorld->removeSoftBody(m_ball);
+  } else {
+    m_softMultiBodyWorld->removeSoftBody(m_ball);
+  }
   delete m_ball;
   m_world->removeRigidBody(m_bullet->ground.get());
   m_world.reset();
@@ -306,6 +333,17 @@ void SoftBallScene::makeToolDynamic(double mass, const btTransform& pose) {
 }
 
 btRigidBody& SoftBallScene::ground() { return *m_bullet->ground; }
+
+btSoftRigidDynamicsWorld& SoftBallScene::world() {
+  if (m_softRigidWorld == nullptr) {
+    throw std::logic_error("SoftBallScene::world(): the scene is in a btSoftMultiBodyDynamicsWorld; use dynamicsWorld()");
+  }
+  return *m_softRigidWorld;
+}
+
+btSoftBodyWorldInfo& SoftBallScene::worldInfo() {
+  return m_softRigidWorld != nullptr ? m_softRigidWorld->getWorldInfo() : m_softMultiBodyWorld->getWorldInfo();
+}
 
 ToolBox SoftBallScene::toolBox() const {
   ToolBox box;

@@ -18,6 +18,8 @@
 #include <string>
 #include <vector>
 
+class btDiscreteDynamicsWorld;
+class btSoftMultiBodyDynamicsWorld;
 class btSoftRigidDynamicsWorld;
 class btSoftBody;
 struct btSoftBodyWorldInfo;
@@ -52,9 +54,17 @@ enum class ToolShape {
 };
 const char* toolShapeName(ToolShape shape);
 
+/// The Bullet world the scene is built in.
+enum class WorldKind {
+  SoftRigid,      ///< btSoftRigidDynamicsWorld, with btSequentialImpulseConstraintSolver
+  SoftMultiBody,  ///< btSoftMultiBodyDynamicsWorld, with btMultiBodyConstraintSolver (PyBullet's soft world)
+};
+const char* worldKindName(WorldKind world);
+
 struct SceneSettings {
   Algorithm algorithm = Algorithm::ThinTool;
   ToolShape tool = ToolShape::Plate;
+  WorldKind world = WorldKind::SoftRigid;
   double timeStep = 1.0 / 60;  ///< s
   int ballResolution = 63;     ///< btSoftBodyHelpers::CreateEllipsoid's res: 63 gives 128 faces
   /// Joins CreateEllipsoid's res + 3 points by btConvexHullComputer instead of CreateEllipsoid's
@@ -90,7 +100,11 @@ class SoftBallScene {
   /// move vertically only (a device's slide).
   void makeToolDynamic(double mass, const btTransform& pose);
 
-  btSoftRigidDynamicsWorld& world() { return *m_world; }
+  /// The world of a WorldKind::SoftRigid scene; throws std::logic_error for the other kind.
+  btSoftRigidDynamicsWorld& world();
+  /// The world, of either kind.
+  btDiscreteDynamicsWorld& dynamicsWorld() { return *m_world; }
+  btSoftBodyWorldInfo& worldInfo();
   btSoftBody& ball() { return *m_ball; }
   btRigidBody& toolBody() { return *m_tool; }
   btRigidBody& ground();
@@ -115,7 +129,9 @@ class SoftBallScene {
   SceneSettings m_settings;
   struct Bullet;
   std::unique_ptr<Bullet> m_bullet;
-  std::unique_ptr<btSoftRigidDynamicsWorld> m_world;
+  std::unique_ptr<btDiscreteDynamicsWorld> m_world;
+  btSoftRigidDynamicsWorld* m_softRigidWorld = nullptr;          // m_world, when of that kind
+  btSoftMultiBodyDynamicsWorld* m_softMultiBodyWorld = nullptr;  // m_world, when of that kind
   btSoftBody* m_ball = nullptr;
   btRigidBody* m_tool = nullptr;
   thintool::Tool* m_thinTool = nullptr;

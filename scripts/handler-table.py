@@ -2,9 +2,11 @@
 """Prints the table (docs/results/evaluation.md) of stock Bullet's soft-rigid handler against ThinTool's collision stage.
 
 Runs benchmarks/bullet/HandlerBench.cpp's rows (StockHandler, ThinToolHandler,
-ThinToolPaperHandler at each <faces>/<margin mm>) with repetitions in random order and keeps each
-row's fastest repetition (each time figure on its own, scripts/benchmark_rows.py), then prints one
-markdown row per size and margin. Needs a Release build in ./build (see README):
+ThinToolPaperHandler at each <faces>/<margin mm>, and the same scene's StockHandlerSoftMultiBody and
+ThinToolHandlerSoftMultiBody in the soft multibody world) with repetitions in random order and keeps
+each row's fastest repetition (each time figure on its own, scripts/benchmark_rows.py), then prints
+one markdown row per size and margin, and a second table of the stage in each world. Needs a
+Release build in ./build (see README):
 
     ./scripts/handler-table.py [repetitions, 5 by default]
 """
@@ -14,7 +16,7 @@ from benchmark_rows import fastest_rows, number
 
 repetitions = sys.argv[1] if len(sys.argv) > 1 else "5"
 fastest = {(name, int(faces), int(margin)): row
-           for (name, faces, margin, *_), row in fastest_rows("Handler/", repetitions,
+           for (name, faces, margin, *_), row in fastest_rows("Handler(SoftMultiBody)?/", repetitions,
                                                               ("real_time", "detectUs", "lastWordUs", "sharedPassUs", "guardUs")).items()}
 print("| faces, margin | stock | ThinTool: stage / detection | ratio to stock: stage / detection "
       "| last word (of which shared with Bullet; energy guard) | ratio to stock: stage + last word, + its own part "
@@ -36,3 +38,13 @@ for faces, margin in sizes:
           f"| {tool['facesNear']:,.0f} ({tool['facesInSweptBox']:,.0f}) | {tool['facesWalked']:,.0f} "
           f"| {tool['tests']:,.0f} "
           f"| {stock['nodesNear']:,.0f} |")
+
+print()
+print("| faces, margin | world | stock | ThinTool's stage | ratio to stock |")
+print("|---|---|---|---|---|")
+worlds = (("btSoftRigidDynamicsWorld", ""), ("btSoftMultiBodyDynamicsWorld", "SoftMultiBody"))
+for faces, margin in sorted({(faces, margin) for (name, faces, margin) in fastest if name.endswith("SoftMultiBody")}):
+    for world, suffix in worlds:
+        stock = fastest[("StockHandler" + suffix, faces, margin)]["real_time"]
+        tool = fastest[("ThinToolHandler" + suffix, faces, margin)]["real_time"]
+        print(f"| {faces:,}, {margin} mm | {world} | {number(stock)} | {number(tool)} | {tool / stock:.2f} |")

@@ -11,8 +11,8 @@
 
 #include <SoftBallScene.h>
 
+#include <BulletDynamics/Dynamics/btDiscreteDynamicsWorld.h>
 #include <BulletSoftBody/btSoftBody.h>
-#include <BulletSoftBody/btSoftRigidDynamicsWorld.h>
 
 #include <memory>
 
@@ -21,9 +21,11 @@ namespace thintool::scenes {
 /// margin (m) is the ball's collision margin, which ThinTool's skin follows; toolOptions are
 /// ThinTool's, whose sampling this sets.
 inline std::unique_ptr<SoftBallScene> makeFloatingBall(Algorithm algorithm, int faces, double margin, double timeStep,
-                                                       ToolOptions toolOptions = {}) {
+                                                       ToolOptions toolOptions = {},
+                                                       WorldKind world = WorldKind::SoftRigid) {
   SceneSettings settings;
   settings.algorithm = algorithm;
+  settings.world = world;
   settings.ballResolution = faces / 2 - 1;  // CreateEllipsoid's points make 2·(res + 1) faces
   settings.exactBallHull = true;
   settings.timeStep = timeStep;
@@ -32,8 +34,8 @@ inline std::unique_ptr<SoftBallScene> makeFloatingBall(Algorithm algorithm, int 
   auto scene = std::make_unique<SoftBallScene>(settings);
   scene->ball().getCollisionShape()->setMargin(btScalar(margin));
   scene->ball().m_cfg.kPR = 0;
-  scene->world().setGravity(btVector3(0, 0, 0));
-  scene->world().getWorldInfo().m_gravity = btVector3(0, 0, 0);
+  scene->dynamicsWorld().setGravity(btVector3(0, 0, 0));
+  scene->worldInfo().m_gravity = btVector3(0, 0, 0);
   return scene;
 }
 

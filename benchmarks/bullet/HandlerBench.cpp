@@ -43,6 +43,10 @@
 // box grown by the margin, nodesNear the nodes in stock's query box. The allocs counter counts
 // operator new and Bullet's allocator per replay.
 //
+// The rows whose names end in SoftMultiBody build the same scene in btSoftMultiBodyDynamicsWorld
+// (with btMultiBodyConstraintSolver), PyBullet's soft world, where Bullet collides the pairs the
+// same way: each world's stage against stock's in it.
+//
 // Deviations from a run: no gravity or pressure, and the caches are warm (the replay revisits the
 // same data).
 
@@ -56,8 +60,8 @@
 #include <thintool/thintool.h>
 
 #include <BulletCollision/BroadphaseCollision/btOverlappingPairCache.h>
+#include <BulletDynamics/Dynamics/btDiscreteDynamicsWorld.h>
 #include <BulletSoftBody/btSoftBody.h>
-#include <BulletSoftBody/btSoftRigidDynamicsWorld.h>
 #include <LinearMath/btAlignedAllocator.h>
 #include <btBulletDynamicsCommon.h>
 
@@ -129,9 +133,9 @@ struct Replay {
     }
   }
 
-  Replay(Algorithm algorithm, int faces, double margin) {
-    scene = makeFloatingBall(algorithm, faces, margin, kTimeStep);
-    btSoftRigidDynamicsWorld& world = scene->world();
+  Replay(Algorithm algorithm, int faces, double margin, WorldKind softWorld) {
+    scene = makeFloatingBall(algorithm, faces, margin, kTimeStep, {}, softWorld);
+    btDiscreteDynamicsWorld& world = scene->dynamicsWorld();
     const double halfThickness = scene->toolBox().halfExtents.y;
     const double finalHeight = scene->ballTop() - kFinalDepth + halfThickness;
     const double stepLength = kSpeed * kTimeStep;
@@ -236,13 +240,13 @@ struct Replay {
     if (scene->tool() != nullptr) {
       // The nodes are back where the face tree was fitted around them: as far as ThinTool's record
       // of the pass goes, the pass begins again (CollisionPass).
-      detail::beginCollisionPass(scene->world());
+      detail::beginCollisionPass(scene->dynamicsWorld());
     }
   }
 
   // Runs the pairs as the dispatcher does; returns the wall time (s).
   double runPairs() {
-    btSoftRigidDynamicsWorld& world = scene->world();
+    btDiscreteDynamicsWorld& world = scene->dynamicsWorld();
     auto& dispatcher = *static_cast<btCollisionDispatcher*>(world.getDispatcher());
     const btDispatcherInfo& info = world.getDispatchInfo();
     const btNearCallback callback = dispatcher.getNearCallback();
@@ -271,18 +275,18 @@ struct Replay {
 
 // Built once per process: a 65k-face scene takes seconds, and the benchmark function runs several
 // times for each row. Every replay starts from the captured stage, so reuse changes nothing.
-Replay& replayFor(Algorithm algorithm, int faces, int marginMillimetres) {
-  static std::map<std::tuple<Algorithm, int, int>, std::unique_ptr<Replay>> replays;
-  std::unique_ptr<Replay>& replay = replays[{algorithm, faces, marginMillimetres}];
+Replay& replayFor(Algorithm algorithm, int faces, int marginMillimetres, WorldKind world) {
+  static std::map<std::tuple<Algorithm, int, int, WorldKind>, std::unique_ptr<Replay>> replays;
+  std::unique_ptr<Replay>& replay = replays[{algorithm, faces, marginMillimetres, world}];
   if (replay == nullptr) {
     test::installCountingBulletAllocator();
-    replay = std::make_unique<Replay>(algorithm, faces, marginMillimetres / 1000.0);
+    replay = std::make_unique<Replay>(algorithm, faces, marginMillimetres / 1000.0, world);
   }
   return *replay;
 }
 
-void run(benchmark::State& state, Algorithm algorithm) {
-  Replay& replay = replayFor(algorithm, static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+void run(benchmark::State& state, Algorithm algorithm, WorldKind world = WorldKind::SoftRigid) {
+  Replay& replay = replayFor(algorithm, static_cast<int>(state.range(0)), static_cast<int>(state.range(1)), world);
   thintool::Tool* tool = replay.scene->tool();
   if (replay.scene->ball().m_faces.size() != state.range(0)) {
     state.SkipWithError("the ball does not have the faces asked for");
@@ -349,6 +353,10 @@ void run(benchmark::State& state, Algorithm algorithm) {
 void StockHandler(benchmark::State& state) { run(state, Algorithm::StockE); }
 void ThinToolHandler(benchmark::State& state) { run(state, Algorithm::ThinTool); }
 void ThinToolPaperHandler(benchmark::State& state) { run(state, Algorithm::ThinToolPaper); }
+void StockHandlerSoftMultiBody(benchmark::State& state) { run(state, Algorithm::StockE, WorldKind::SoftMultiBody); }
+void ThinToolHandlerSoftMultiBody(benchmark::State& state) {
+  run(state, Algorithm::ThinTool, WorldKind::SoftMultiBody);
+}
 
 // Arguments: the ball's faces (128 is the paper's ball) and its margin in mm, ThinTool's skin: stock
 // E's 50 mm, and 5 mm (DetectionBench's skin) for both algorithms at two sizes, where the margin's
@@ -359,6 +367,10 @@ void ThinToolPaperHandler(benchmark::State& state) { run(state, Algorithm::ThinT
 BENCHMARK(StockHandler) THINTOOL_HANDLER_SIZES->UseManualTime()->Unit(benchmark::kMicrosecond);
 BENCHMARK(ThinToolHandler) THINTOOL_HANDLER_SIZES->UseManualTime()->Unit(benchmark::kMicrosecond);
 BENCHMARK(ThinToolPaperHandler) THINTOOL_HANDLER_SIZES->UseManualTime()->Unit(benchmark::kMicrosecond);
+// The same scene in the soft multibody world (PyBullet's soft world), at three sizes.
+#define THINTOOL_HANDLER_WORLD_SIZES ->Args({128, 50})->Args({4096, 50})->Args({65536, 50})
+BENCHMARK(StockHandlerSoftMultiBody) THINTOOL_HANDLER_WORLD_SIZES->UseManualTime()->Unit(benchmark::kMicrosecond);
+BENCHMARK(ThinToolHandlerSoftMultiBody) THINTOOL_HANDLER_WORLD_SIZES->UseManualTime()->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace thintool::scenes

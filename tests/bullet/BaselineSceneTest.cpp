@@ -67,6 +67,23 @@ TEST(PaperPlate, TheDefaultHoldsTheCaseWhereThePaperLetsANodeAcrossTheRim) {
   EXPECT_LT(swept.metrics.maxPenetration, 1e-4);
 }
 
+// The same press in PyBullet's soft world, btSoftMultiBodyDynamicsWorld: stock Bullet lets the plate
+// through there too, and ThinTool's defaults hold it.
+TEST(SoftMultiBodyWorld, ThinToolHoldsThePressThatStockLetsThrough) {
+  PressSettings settings;
+  settings.scene.world = WorldKind::SoftMultiBody;
+  settings.scene.algorithm = Algorithm::StockE;
+  const PressResult stock = runPress(settings);
+  EXPECT_GT(stock.metrics.crossed, 0);
+  settings.scene.algorithm = Algorithm::ThinTool;
+  const PressResult thin = runPress(settings);
+  EXPECT_GT(thin.maxContacts, 0) << "the plate did press the ball";
+  EXPECT_EQ(thin.metrics.crossed, 0);
+  EXPECT_EQ(thin.metrics.piercedSteps, 0);
+  EXPECT_FALSE(thin.metrics.everInside);
+  EXPECT_LT(thin.metrics.maxPenetration, 1e-4);
+}
+
 TEST(StockPlate, FailsAtOneMetrePerSecondAndSixtyHertz) {
   // The realistic-skin stock set-up (E) and the defaults (A) both let the plate through.
   for (Algorithm stock : {Algorithm::StockE, Algorithm::StockA}) {
