@@ -577,5 +577,26 @@ TEST(Separation, TheLastResortSlidesAGroupThatTouchesAFaceWithAPinnedNodeRatherT
   }
 }
 
+TEST(Separation, TheNodesLastSayPutsANodeLeftInsideBackOutAndCountsTheFaceItLeavesPierced) {
+  // Another piece's last move left a node 4 mm inside this plate, which it had entered from below;
+  // the face it shares with two nodes pinned above the plate cannot come clear. The node goes back
+  // out of the bottom, moved by nothing else, and the face is counted.
+  const ToolModel piece = plate();
+  Patch p;
+  const Index inside = p.node({0.05, -0.03, 0}, {0.05, -0.006, 0});
+  const Index pinnedA = p.node({0, 0.05, -0.05}, {0, 0.05, -0.05}, 0);
+  const Index pinnedB = p.node({0.1, 0.05, 0.05}, {0.1, 0.05, 0.05}, 0);
+  const Index outside = p.node({0.3, -0.03, 0}, {0.3, -0.02, 0});
+  p.patch.faces.push_back({inside, pinnedA, pinnedB});
+  const SeparationCounts counts = keepNodesOutside(piece, PieceMotion(Pose{}, Pose{}, 0.1), {}, p.patch);
+  EXPECT_EQ(counts.nodesMoved, 1u);
+  EXPECT_EQ(counts.nodesInside, 0u);
+  EXPECT_EQ(counts.facesPierced, 1u);
+  EXPECT_NEAR(p.patch.positions[inside].y, -0.01 - kClearance, 1e-12);
+  EXPECT_EQ(p.patch.positions[inside].x, 0.05);
+  EXPECT_EQ(p.patch.moved[inside], 1);
+  for (const Index still : {pinnedA, pinnedB, outside}) EXPECT_EQ(p.patch.moved[still], 0) << "node " << still;
+}
+
 }  // namespace
 }  // namespace thintool
