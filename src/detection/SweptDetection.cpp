@@ -153,9 +153,9 @@ struct Sweep {
   }
 
   // A static tool point against a moving soft face.
-  void toolPoint(Index point, const FaceMotion& face) {
+  // p is model.points[point].
+  void toolPoint(Index point, const Vec3& p, const FaceMotion& face) {
     ++counters.triangleTests;
-    const Vec3& p = model.points[point];
     // Within the skin, a face that touched the tool last step keeps the side it was on: if the
     // soft solver left it slightly pierced, the geometry shows the wrong side. Farther out the
     // geometry decides, so that a face wrapping around a rim over several steps can turn.
@@ -333,9 +333,9 @@ void detectSwept(const StepContext& step, const SoftPatch& patch, SideMemory& me
                        skin * std::max(std::abs(motion.n0.z), std::abs(motion.n1.z))};
       const Aabb covered{motionBox.min - reach - Vec3{tolerance, tolerance, tolerance},
                          motionBox.max + reach + Vec3{tolerance, tolerance, tolerance}};
-      model.pointGrid.queryBox(covered, [&](Index point) {
+      model.pointGrid.queryBox(covered, [&](Index point, const Vec3& p) {
         ++outCounters.nodesTested;
-        sweep.toolPoint(point, motion);
+        sweep.toolPoint(point, p, motion);
       });
     }
     for (Index e = 0; e < model.featureEdges.size(); ++e) {

@@ -27,7 +27,8 @@ class PointGrid {
   bool empty() const { return m_items.empty(); }
   Index cellCount() const { return static_cast<Index>(m_cellStart.empty() ? 0 : m_cellStart.size() - 1); }
 
-  /// Calls visit(item) for every point inside box (boundary included).
+  /// Calls visit(item, point) for every point inside box (boundary included): point is the grid's
+  /// copy of points[item], read in cell order, so a caller need not look it up again.
   template <class Visitor>
   void queryBox(const Aabb& box, Visitor&& visit) const {
     if (m_items.empty() || !box.overlaps(m_bounds)) {
@@ -46,7 +47,7 @@ class PointGrid {
         const Index end = m_cellStart[row + static_cast<Index>(high[0]) + 1];
         for (Index k = begin; k < end; ++k) {
           if (box.contains(m_points[k])) {
-            visit(m_items[k]);
+            visit(m_items[k], m_points[k]);
           }
         }
       }

@@ -19,9 +19,13 @@ std::vector<Index> bruteForce(const std::vector<Vec3>& points, const Aabb& box) 
   return found;
 }
 
-std::vector<Index> query(const PointGrid& grid, const Aabb& box) {
+// The items the grid finds in box, each checked to come with its own point.
+std::vector<Index> query(const PointGrid& grid, const std::vector<Vec3>& points, const Aabb& box) {
   std::vector<Index> found;
-  grid.queryBox(box, [&](Index i) { found.push_back(i); });
+  grid.queryBox(box, [&](Index i, const Vec3& p) {
+    EXPECT_EQ(p, points[i]) << "point " << i;
+    found.push_back(i);
+  });
   std::sort(found.begin(), found.end());
   return found;
 }
@@ -48,13 +52,13 @@ void expectMatchesBruteForce(const std::vector<Vec3>& points, unsigned seed) {
     const Aabb box{middle - half, middle + half};
     const std::vector<Index> expected = bruteForce(points, box);
     nonEmpty += !expected.empty();
-    ASSERT_EQ(query(grid, box), expected) << "query " << q;
+    ASSERT_EQ(query(grid, points, box), expected) << "query " << q;
   }
   EXPECT_GT(nonEmpty, 10) << "the queries must also find points";
   // A box exactly around one point finds it: the boundary counts.
   const Aabb onePoint = Aabb::fromPoints(points.back(), points.back());
-  ASSERT_EQ(query(grid, onePoint), bruteForce(points, onePoint));
-  EXPECT_FALSE(query(grid, onePoint).empty());
+  ASSERT_EQ(query(grid, points, onePoint), bruteForce(points, onePoint));
+  EXPECT_FALSE(query(grid, points, onePoint).empty());
 }
 
 TEST(PointGrid, ScatteredPointsQueryLikeBruteForce) {
@@ -91,15 +95,15 @@ TEST(PointGrid, DegenerateSetsAnswerQueries) {
   PointGrid grid;
   grid.build({});
   EXPECT_TRUE(grid.empty());
-  EXPECT_TRUE(query(grid, Aabb{{-1, -1, -1}, {1, 1, 1}}).empty());
+  EXPECT_TRUE(query(grid, {}, Aabb{{-1, -1, -1}, {1, 1, 1}}).empty());
 
   const std::vector<Vec3> same(5, Vec3{1, 2, 3});  // every point at one place
   grid.build(same);
   EXPECT_EQ(grid.cellCount(), 1u);
-  EXPECT_EQ(query(grid, Aabb{{0, 0, 0}, {2, 2, 4}}).size(), 5u);
-  EXPECT_TRUE(query(grid, Aabb{{0, 0, 0}, {0.5, 2, 4}}).empty());
+  EXPECT_EQ(query(grid, same, Aabb{{0, 0, 0}, {2, 2, 4}}).size(), 5u);
+  EXPECT_TRUE(query(grid, same, Aabb{{0, 0, 0}, {0.5, 2, 4}}).empty());
   const Real nan = std::numeric_limits<Real>::quiet_NaN();
-  EXPECT_TRUE(query(grid, Aabb{{nan, 0, 0}, {2, 2, 4}}).empty()) << "a box with NaN meets nothing";
+  EXPECT_TRUE(query(grid, same, Aabb{{nan, 0, 0}, {2, 2, 4}}).empty()) << "a box with NaN meets nothing";
 }
 
 }  // namespace
