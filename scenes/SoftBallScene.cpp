@@ -2,9 +2,9 @@
 // Copyright (c) 2026 The ThinTool developers
 #include "SoftBallScene.h"
 
+#include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>
 #include <BulletSoftBody/btDefaultSoftBodySolver.h>
 #include <BulletSoftBody/btSoftBodyHelpers.h>
-#include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>
 #include <BulletSoftBody/btSoftBodyRigidBodyCollisionConfiguration.h>
 #include <BulletSoftBody/btSoftMultiBodyDynamicsWorld.h>
 #include <BulletSoftBody/btSoftRigidDynamicsWorld.h>
@@ -161,10 +161,6 @@ const char* toolShapeName(ToolShape shape) {
       break;
   }
   return "split plate";
-}
-
-const char* worldKindName(WorldKind world) {
-  return world == WorldKind::SoftRigid ? "btSoftRigidDynamicsWorld" : "btSoftMultiBodyDynamicsWorld";
 }
 
 struct SoftBallScene::Bullet {
@@ -336,7 +332,8 @@ btRigidBody& SoftBallScene::ground() { return *m_bullet->ground; }
 
 btSoftRigidDynamicsWorld& SoftBallScene::world() {
   if (m_softRigidWorld == nullptr) {
-    throw std::logic_error("SoftBallScene::world(): the scene is in a btSoftMultiBodyDynamicsWorld; use dynamicsWorld()");
+    throw std::logic_error(
+        "SoftBallScene::world(): the scene is in a btSoftMultiBodyDynamicsWorld; use dynamicsWorld()");
   }
   return *m_softRigidWorld;
 }

@@ -59,7 +59,6 @@ enum class WorldKind {
   SoftRigid,      ///< btSoftRigidDynamicsWorld, with btSequentialImpulseConstraintSolver
   SoftMultiBody,  ///< btSoftMultiBodyDynamicsWorld, with btMultiBodyConstraintSolver (PyBullet's soft world)
 };
-const char* worldKindName(WorldKind world);
 
 struct SceneSettings {
   Algorithm algorithm = Algorithm::ThinTool;

@@ -15,9 +15,9 @@ import sys
 from benchmark_rows import fastest_rows, number
 
 repetitions = sys.argv[1] if len(sys.argv) > 1 else "5"
+figures = ("real_time", "detectUs", "lastWordUs", "sharedPassUs", "guardUs")
 fastest = {(name, int(faces), int(margin)): row
-           for (name, faces, margin, *_), row in fastest_rows("Handler(SoftMultiBody)?/", repetitions,
-                                                              ("real_time", "detectUs", "lastWordUs", "sharedPassUs", "guardUs")).items()}
+           for (name, faces, margin, *_), row in fastest_rows("Handler(SoftMultiBody)?/", repetitions, figures).items()}
 print("| faces, margin | stock | ThinTool: stage / detection | ratio to stock: stage / detection "
       "| last word (of which shared with Bullet; energy guard) | ratio to stock: stage + last word, + its own part "
       "| paper: stage / detection | ThinTool faces gathered (meeting the swept box) "

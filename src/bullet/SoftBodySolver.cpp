@@ -1072,9 +1072,10 @@ SeparationCounts SoftBodySolverImpl::separateGrowingPatch(Tool& tool, const Tool
   SeparationCounts counts;
   for (int extension = 0;; ++extension) {
     const SeparationSettings& settings = tool.state().options.separation;
-    const SeparationCounts run = stage == Stage::LastResort  ? carryMeetingFaces(piece, motion, settings, m_patch)
-                                 : stage == Stage::NodesLast ? keepNodesOutside(piece, motion, settings, m_patch)
-                                                             : separateFromPiece(piece, motion, settings, m_patch, near);
+    const SeparationCounts run =
+        stage == Stage::LastResort  ? carryMeetingFaces(piece, motion, settings, m_patch)
+        : stage == Stage::NodesLast ? keepNodesOutside(piece, motion, settings, m_patch)
+                                    : separateFromPiece(piece, motion, settings, m_patch, near);
     counts.nodesMoved += run.nodesMoved;
     counts.facesMoved += run.facesMoved;
     counts.nodesInside = run.nodesInside;
