@@ -9,9 +9,11 @@
 #include <thintool/core/Error.h>
 #include <thintool/thintool.h>
 
+#include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>
 #include <BulletSoftBody/btDefaultSoftBodySolver.h>
 #include <BulletSoftBody/btSoftBodyHelpers.h>
 #include <BulletSoftBody/btSoftBodyRigidBodyCollisionConfiguration.h>
+#include <BulletSoftBody/btSoftMultiBodyDynamicsWorld.h>
 #include <BulletSoftBody/btSoftRigidDynamicsWorld.h>
 #include <btBulletDynamicsCommon.h>
 
@@ -59,9 +61,11 @@ struct World {
   std::unique_ptr<btCollisionConfiguration> configuration;
   std::unique_ptr<btCollisionDispatcher> dispatcher;
   btDbvtBroadphase broadphase;
-  btSequentialImpulseConstraintSolver solver;
+  std::unique_ptr<btConstraintSolver> solver;
   std::unique_ptr<btSoftBodySolver> softSolver;
-  std::unique_ptr<btSoftRigidDynamicsWorld> world;
+  std::unique_ptr<btDiscreteDynamicsWorld> world;
+  btSoftRigidDynamicsWorld* softRigidWorld = nullptr;          // world, when of that kind
+  btSoftMultiBodyDynamicsWorld* softMultiBodyWorld = nullptr;  // world, when of that kind
   btBoxShape groundShape{btVector3(20, 1, 20)};
   btDefaultMotionState groundMotion{btTransform(btQuaternion::getIdentity(), btVector3(0, -1, 0))};
   std::unique_ptr<btRigidBody> ground;
@@ -77,7 +81,11 @@ struct World {
       world->removeRigidBody(tools[i].get());
     }
     if (soft != nullptr) {
-      world->removeSoftBody(soft);
+      if (softRigidWorld != nullptr) {
+        softRigidWorld->removeSoftBody(soft);
+      } else {
+        softMultiBodyWorld->removeSoftBody(soft);
+      }
       delete soft;
     }
     if (ground) world->removeRigidBody(ground.get());
@@ -228,11 +236,24 @@ RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
     w.configuration = std::move(configuration);
   }
   w.dispatcher = std::make_unique<btCollisionDispatcher>(w.configuration.get());
-  w.world = std::make_unique<btSoftRigidDynamicsWorld>(w.dispatcher.get(), &w.broadphase, &w.solver,
-                                                       w.configuration.get(), w.softSolver.get());
-  btSoftRigidDynamicsWorld& world = *w.world;
+  if (options.world == scenes::WorldKind::SoftRigid) {
+    w.solver = std::make_unique<btSequentialImpulseConstraintSolver>();
+    auto softRigid = std::make_unique<btSoftRigidDynamicsWorld>(w.dispatcher.get(), &w.broadphase, w.solver.get(),
+                                                                w.configuration.get(), w.softSolver.get());
+    w.softRigidWorld = softRigid.get();
+    w.world = std::move(softRigid);
+  } else {
+    auto solver = std::make_unique<btMultiBodyConstraintSolver>();
+    auto softMultiBody = std::make_unique<btSoftMultiBodyDynamicsWorld>(w.dispatcher.get(), &w.broadphase, solver.get(),
+                                                                        w.configuration.get(), w.softSolver.get());
+    w.solver = std::move(solver);
+    w.softMultiBodyWorld = softMultiBody.get();
+    w.world = std::move(softMultiBody);
+  }
+  btDiscreteDynamicsWorld& world = *w.world;
   world.setGravity(toBt(scene.gravity));
-  btSoftBodyWorldInfo& info = world.getWorldInfo();
+  btSoftBodyWorldInfo& info =
+      w.softRigidWorld != nullptr ? w.softRigidWorld->getWorldInfo() : w.softMultiBodyWorld->getWorldInfo();
   info.m_gravity = world.getGravity();
   info.m_sparsesdf.setDefaultVoxelsz(btScalar(variant.voxel));
   info.m_sparsesdf.Reset();
@@ -253,7 +274,11 @@ RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
   soft.setTotalMass(btScalar(scene.soft.mass));
   const double softMargin = scene.soft.margin.value_or(variant.margin);
   soft.getCollisionShape()->setMargin(btScalar(softMargin));
-  world.addSoftBody(w.soft);
+  if (w.softRigidWorld != nullptr) {
+    w.softRigidWorld->addSoftBody(w.soft);
+  } else {
+    w.softMultiBodyWorld->addSoftBody(w.soft);
+  }
 
   std::vector<GroundTruthPiece> pieces;
   std::vector<double> toolReach;  // m, the farthest corner of each tool's pieces from its origin

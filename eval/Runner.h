@@ -10,6 +10,8 @@
 #include "GroundTruth.h"
 #include "SceneFile.h"
 
+#include <WorldKind.h>
+
 #include <functional>
 #include <string>
 #include <vector>
@@ -62,6 +64,8 @@ struct RunResult {
 };
 
 struct RunOptions {
+  /// The Bullet world the scene is built in.
+  scenes::WorldKind world = scenes::WorldKind::SoftRigid;
   /// Called after each step with (steps done, steps in all).
   std::function<void(int, int)> progress;
   /// Called once the soft body has settled, with its lowest and highest node heights (m).

@@ -53,10 +53,12 @@ Verdict judge(const RunResult& run, double controlNodeSpeed) {
   return verdict;
 }
 
-double controlNodeSpeed(const SceneSpec& scene) {
+double controlNodeSpeed(const SceneSpec& scene, scenes::WorldKind world) {
   SceneSpec control = scene;
   control.tools.clear();
-  return runScene(control).peakNodeSpeed;
+  RunOptions options;
+  options.world = world;
+  return runScene(control, options).peakNodeSpeed;
 }
 
 Verdict runAndJudge(const SceneSpec& scene, const RunOptions& options, RunResult* run) {
@@ -64,7 +66,7 @@ Verdict runAndJudge(const SceneSpec& scene, const RunOptions& options, RunResult
   RunResult& result = run != nullptr ? *run : local;
   result = runScene(scene, options);
   Verdict verdict = judge(result);
-  if (verdict.energy) verdict = judge(result, controlNodeSpeed(scene));
+  if (verdict.energy) verdict = judge(result, controlNodeSpeed(scene, options.world));
   return verdict;
 }
 

@@ -63,7 +63,7 @@ struct Verdict {
 Verdict judge(const RunResult& run, double controlNodeSpeed = 0);
 
 /// The energy check's control: the scene's peak node speed without its tools (m/s).
-double controlNodeSpeed(const SceneSpec& scene);
+double controlNodeSpeed(const SceneSpec& scene, scenes::WorldKind world = scenes::WorldKind::SoftRigid);
 
 /// Runs the scene and judges it, with the control run when the energy check asks for it. run, when
 /// not null, receives the run.

@@ -8,6 +8,7 @@
 /// ThinTool. Shared by the main job, the tests and the benchmarks; not part of the library.
 
 #include "Metrics.h"
+#include "WorldKind.h"
 
 #include <thintool/thintool.h>
 
@@ -53,12 +54,6 @@ enum class ToolShape {
   SplitPlate,  ///< the plate as a btCompoundShape of two 0.4 m halves side by side
 };
 const char* toolShapeName(ToolShape shape);
-
-/// The Bullet world the scene is built in.
-enum class WorldKind {
-  SoftRigid,      ///< btSoftRigidDynamicsWorld, with btSequentialImpulseConstraintSolver
-  SoftMultiBody,  ///< btSoftMultiBodyDynamicsWorld, with btMultiBodyConstraintSolver (PyBullet's soft world)
-};
 
 struct SceneSettings {
   Algorithm algorithm = Algorithm::ThinTool;

@@ -196,6 +196,27 @@ TEST(GeneratedScenes, DiscreteDetectionHoldsSlowScenesWhereTheGuardsBoundOnceGre
   }
 }
 
+// PyBullet's soft world, btSoftMultiBodyDynamicsWorld, with no multibody in it, steps each scene as
+// btSoftRigidDynamicsWorld does, ThinTool's stages included: the same ground truth at every step.
+TEST(GeneratedScenes, TheSoftMultiBodyWorldStepsEachSceneAsTheSoftRigidWorldDoes) {
+  RunOptions softMultiBody;
+  softMultiBody.world = scenes::WorldKind::SoftMultiBody;
+  for (std::uint64_t seed = 1; seed <= 12; ++seed) {
+    const SceneSpec scene = generateScene(seed, kScenes);
+    const RunResult softRigidRun = runScene(scene);
+    const RunResult softMultiBodyRun = runScene(scene, softMultiBody);
+    ASSERT_EQ(softRigidRun.samples.size(), softMultiBodyRun.samples.size()) << "seed " << seed;
+    for (std::size_t i = 0; i < softRigidRun.samples.size(); ++i) {
+      const StepSample& a = softRigidRun.samples[i];
+      const StepSample& b = softMultiBodyRun.samples[i];
+      ASSERT_TRUE(a.nodeSpeed == b.nodeSpeed && a.maxPenetration == b.maxPenetration && a.crossings == b.crossings &&
+                  a.piercedFaces == b.piercedFaces && a.toolInside == b.toolInside)
+          << "seed " << seed << ", step " << i + 1 << ": fastest node " << a.nodeSpeed << " against " << b.nodeSpeed
+          << " m/s\n  reproduce: " << reproduce(seed) << " [--soft-multibody]";
+    }
+  }
+}
+
 TEST(GeneratedScenesEverywhere, RunCleanly) {
   for (std::uint64_t seed = 1; seed <= 12; ++seed) {
     const Outcome outcome = runSeed(seed);
