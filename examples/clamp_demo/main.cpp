@@ -40,7 +40,6 @@
 #include <fstream>
 #include <functional>
 #include <memory>
-#include <stdexcept>
 #include <string>
 
 using namespace thintool;
@@ -50,56 +49,19 @@ namespace {
 
 #ifdef THINTOOL_HAVE_VIEWER
 // The viewer over the clamp scene: every step drawn, or, for a screenshot, the step at 3.5 s (the
-// body lifted and held by then) written to a PNG.
-class ClampWindow {
- public:
-  // Null, with the reason on stderr, where there is no display or OpenGL.
-  static std::unique_ptr<ClampWindow> open(const char* title, const std::string& screenshotPath) {
-    viewer::ViewerSettings settings;
-    settings.visible = screenshotPath.empty();
-    settings.title = title;
-    try {
-      return std::unique_ptr<ClampWindow>(new ClampWindow(settings, screenshotPath));
-    } catch (const std::runtime_error& error) {
-      std::fprintf(stderr, "%s\n", error.what());
-      return nullptr;
-    }
+// body lifted and held by then) written to a PNG. Null where there is no display or OpenGL.
+std::unique_ptr<viewer::RunWindow> openClampWindow(const char* title, const std::string& screenshotPath) {
+  std::unique_ptr<viewer::RunWindow> window = viewer::RunWindow::open(title, screenshotPath, 3.5);
+  if (window) {
+    window->camera().target = btVector3(0, 1.2f, 0);
+    window->camera().distance = 6;
   }
-
-  // Draws a step at time (s); false once the run should end (the window closed, the frame written).
-  bool show(const btSoftRigidDynamicsWorld& world, const viewer::Overlay& overlay, double time) {
-    if (m_screenshotPath.empty()) return m_window.frame(world, overlay);
-    if (time < 3.5) return true;
-    m_written = m_window.renderToFile(world, overlay, m_screenshotPath);
-    return false;
-  }
-
-  // The exit status once the run is over: 1 when a screenshot was asked for and not written.
-  int finish() const {
-    if (m_screenshotPath.empty()) return 0;
-    if (!m_written) {
-      std::fprintf(stderr, "clamp_demo: cannot write %s\n", m_screenshotPath.c_str());
-      return 1;
-    }
-    std::printf("wrote %s\n", m_screenshotPath.c_str());
-    return 0;
-  }
-
- private:
-  ClampWindow(const viewer::ViewerSettings& settings, const std::string& screenshotPath)
-      : m_window(settings), m_screenshotPath(screenshotPath) {
-    m_window.camera().target = btVector3(0, 1.2f, 0);
-    m_window.camera().distance = 6;
-  }
-
-  viewer::Viewer m_window;
-  std::string m_screenshotPath;
-  bool m_written = false;
-};
+  return window;
+}
 
 // The grasp in the viewer.
 int view(ClampBody body, const std::string& screenshotPath) {
-  const std::unique_ptr<ClampWindow> window = ClampWindow::open("ThinTool: clamp", screenshotPath);
+  const std::unique_ptr<viewer::RunWindow> window = openClampWindow("ThinTool: clamp", screenshotPath);
   if (!window) return 1;
   ClampRunSettings run;
   run.body = body;
@@ -115,7 +77,7 @@ int view(ClampBody body, const std::string& screenshotPath) {
     return window->show(world, overlay, sample.time);
   };
   runClamp(run);
-  return window->finish();
+  return window->finish("clamp_demo");
 }
 #endif
 
@@ -215,7 +177,7 @@ int session(ClampBody body, std::string trajectory, const std::string& firmware,
 // the panel; or the frame at 3.5 s (held up) written to screenshotPath.
 int viewSession(ClampBody body, const std::string& trajectory, const std::string& firmware,
                 const std::string& screenshotPath) {
-  const std::unique_ptr<ClampWindow> window = ClampWindow::open("ThinTool: clamp under the hand", screenshotPath);
+  const std::unique_ptr<viewer::RunWindow> window = openClampWindow("ThinTool: clamp under the hand", screenshotPath);
   if (!window) return 1;
   double loopRate = 0;
   int steps = 0;
@@ -237,7 +199,7 @@ int viewSession(ClampBody body, const std::string& trajectory, const std::string
     return window->show(world, overlay, sample.time);
   };
   const int status = session(body, trajectory, firmware, ".", true, observer);
-  return window->finish() != 0 ? 1 : status;
+  return window->finish("clamp_demo") != 0 ? 1 : status;
 }
 #endif
 

@@ -21,7 +21,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <stdexcept>
+#include <memory>
 #include <string>
 
 using namespace thintool::scenes;
@@ -29,43 +29,28 @@ using namespace thintool::scenes;
 namespace {
 
 #ifdef THINTOOL_HAVE_VIEWER
-// One grasp in the viewer: every step drawn, or the step at 4 s written to screenshotPath.
+// One grasp in the viewer: every step drawn, or the step at 4 s (lifted and held) written to
+// screenshotPath.
 int view(GripperSettings settings, const std::string& screenshotPath) {
-  thintool::viewer::ViewerSettings viewerSettings;
-  viewerSettings.visible = screenshotPath.empty();
-  viewerSettings.title = "ThinTool: gripper";
-  try {
-    thintool::viewer::Viewer window(viewerSettings);
-    window.camera().target = btVector3(0, 0.3f, 0);
-    window.camera().distance = 1.4f;
-    bool written = false;
-    settings.observer = [&](const btSoftMultiBodyDynamicsWorld& world, const std::array<thintool::Tool*, 2>& fingers,
-                            double time) {
-      thintool::viewer::Overlay overlay;
-      for (thintool::Tool* finger : fingers) {
-        if (finger != nullptr) overlay.tools.push_back(finger);
-      }
-      char line[96];
-      std::snprintf(line, sizeof line, "%s, %s: t %.2f s", graspedBodyName(settings.body),
-                    settings.thinTool ? "ThinTool" : "stock Bullet", time);
-      overlay.panelLines.emplace_back(line);
-      if (screenshotPath.empty()) return window.frame(world, overlay);
-      if (time < 4) return true;
-      written = window.renderToFile(world, overlay, screenshotPath);
-      return false;
-    };
-    runGripper(settings);
-    if (screenshotPath.empty()) return 0;
-    if (!written) {
-      std::fprintf(stderr, "gripper_grasp: cannot write %s\n", screenshotPath.c_str());
-      return 1;
+  const std::unique_ptr<thintool::viewer::RunWindow> window =
+      thintool::viewer::RunWindow::open("ThinTool: gripper", screenshotPath, 4);
+  if (!window) return 1;
+  window->camera().target = btVector3(0, 0.3f, 0);
+  window->camera().distance = 1.4f;
+  settings.observer = [&](const btSoftMultiBodyDynamicsWorld& world, const std::array<thintool::Tool*, 2>& fingers,
+                          double time) {
+    thintool::viewer::Overlay overlay;
+    for (thintool::Tool* finger : fingers) {
+      if (finger != nullptr) overlay.tools.push_back(finger);
     }
-    std::printf("wrote %s\n", screenshotPath.c_str());
-    return 0;
-  } catch (const std::runtime_error& error) {
-    std::fprintf(stderr, "%s\n", error.what());
-    return 1;
-  }
+    char line[96];
+    std::snprintf(line, sizeof line, "%s, %s: t %.2f s", graspedBodyName(settings.body),
+                  settings.thinTool ? "ThinTool" : "stock Bullet", time);
+    overlay.panelLines.emplace_back(line);
+    return window->show(world, overlay, time);
+  };
+  runGripper(settings);
+  return window->finish("gripper_grasp");
 }
 #endif
 

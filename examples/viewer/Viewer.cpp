@@ -7,8 +7,8 @@
 #include <thintool/bullet/Convert.h>
 #include <thintool/bullet/Tool.h>
 
-#include <BulletSoftBody/btSoftBody.h>
 #include <BulletSoftBody/btDeformableMultiBodyDynamicsWorld.h>
+#include <BulletSoftBody/btSoftBody.h>
 #include <BulletSoftBody/btSoftMultiBodyDynamicsWorld.h>
 #include <BulletSoftBody/btSoftRigidDynamicsWorld.h>
 #include <btBulletDynamicsCommon.h>
@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <stdexcept>
 
 namespace thintool::viewer {
@@ -433,6 +434,39 @@ bool Viewer::screenshot(const std::string& path) const {
   glReadPixels(0, 0, w, h, GL_RGB, GL_UNSIGNED_BYTE, pixels.data());
   stbi_flip_vertically_on_write(1);  // OpenGL's rows run bottom-up
   return stbi_write_png(path.c_str(), w, h, 3, pixels.data(), w * 3) != 0;
+}
+
+std::unique_ptr<RunWindow> RunWindow::open(const std::string& title, const std::string& screenshotPath,
+                                           double screenshotTime) {
+  ViewerSettings settings;
+  settings.visible = screenshotPath.empty();
+  settings.title = title;
+  try {
+    return std::unique_ptr<RunWindow>(new RunWindow(settings, screenshotPath, screenshotTime));
+  } catch (const std::runtime_error& error) {
+    std::fprintf(stderr, "%s\n", error.what());
+    return nullptr;
+  }
+}
+
+RunWindow::RunWindow(const ViewerSettings& settings, const std::string& screenshotPath, double screenshotTime)
+    : m_viewer(settings), m_screenshotPath(screenshotPath), m_screenshotTime(screenshotTime) {}
+
+bool RunWindow::show(const WorldView& world, const Overlay& overlay, double time) {
+  if (m_screenshotPath.empty()) return m_viewer.frame(world, overlay);
+  if (time < m_screenshotTime) return true;
+  m_written = m_viewer.renderToFile(world, overlay, m_screenshotPath);
+  return false;
+}
+
+int RunWindow::finish(const char* program) const {
+  if (m_screenshotPath.empty()) return 0;
+  if (!m_written) {
+    std::fprintf(stderr, "%s: cannot write %s\n", program, m_screenshotPath.c_str());
+    return 1;
+  }
+  std::printf("wrote %s\n", m_screenshotPath.c_str());
+  return 0;
 }
 
 }  // namespace thintool::viewer

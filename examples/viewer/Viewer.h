@@ -10,6 +10,7 @@
 // zoom), keys for the caller, and a screenshot to PNG that works under Xvfb with Mesa's software
 // OpenGL. Legacy fixed-function OpenGL 2: the scenes are small and Mesa runs it everywhere.
 
+#include <LinearMath/btAlignedObjectArray.h>
 #include <LinearMath/btVector3.h>
 
 #include <array>
@@ -17,8 +18,6 @@
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <LinearMath/btAlignedObjectArray.h>
 
 class btCollisionWorld;
 class btDeformableMultiBodyDynamicsWorld;
@@ -136,6 +135,30 @@ class Viewer {
   double m_rightDragX = 0, m_rightDragY = 0;
   double m_lastTime = 0;
   bool m_imgui = false;
+};
+
+/// An example's viewer over a run: every step drawn in a window, or, for a screenshot, the first
+/// step at or after screenshotTime (s) written to a PNG without showing the window.
+class RunWindow {
+ public:
+  /// Null, with the reason on stderr, where there is no display or OpenGL. An empty screenshotPath
+  /// asks for the window.
+  static std::unique_ptr<RunWindow> open(const std::string& title, const std::string& screenshotPath,
+                                         double screenshotTime);
+  Camera& camera() { return m_viewer.camera(); }
+  /// Draws a step at time (s); false once the run should end (the window closed, the frame written).
+  bool show(const WorldView& world, const Overlay& overlay, double time);
+  /// The exit status once the run is over: 1 when a screenshot was asked for and not written, which
+  /// program says on stderr.
+  int finish(const char* program) const;
+
+ private:
+  RunWindow(const ViewerSettings& settings, const std::string& screenshotPath, double screenshotTime);
+
+  Viewer m_viewer;
+  std::string m_screenshotPath;
+  double m_screenshotTime;
+  bool m_written = false;
 };
 
 }  // namespace thintool::viewer
