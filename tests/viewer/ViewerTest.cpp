@@ -70,6 +70,19 @@ bool colourNear(const Image& image, float x, float y, const std::array<unsigned 
   return false;
 }
 
+ViewerSettings offScreen() {
+  ViewerSettings settings;
+  settings.visible = false;
+  return settings;
+}
+
+// Draws world and overlay, writes the frame to path and reads it back.
+Image renderToImage(Viewer& viewer, const WorldView& world, const Overlay& overlay, const std::string& path) {
+  viewer.render(world, overlay);
+  EXPECT_TRUE(viewer.screenshot(path)) << path;
+  return load(path);
+}
+
 class ExampleScene : public ::testing::TestWithParam<scenes::ToolShape> {};
 
 TEST_P(ExampleScene, RendersTheToolAndTheSoftBodyWhereTheyAre) {
@@ -84,9 +97,7 @@ TEST_P(ExampleScene, RendersTheToolAndTheSoftBodyWhereTheyAre) {
     pose.setOrigin(pose.getOrigin() - btVector3(0, btScalar(1.0 / 60), 0));
     scene.step(pose);
   }
-  ViewerSettings viewerSettings;
-  viewerSettings.visible = false;
-  Viewer viewer(viewerSettings);
+  Viewer viewer(offScreen());
   viewer.camera().target = scene.aboveBall(1);
   Overlay overlay;
   overlay.tools.push_back(scene.tool());
@@ -144,9 +155,7 @@ INSTANTIATE_TEST_SUITE_P(PlateAndNeedle, ExampleScene,
                          });
 
 TEST(ClampScene, RendersTheJawsAndTheGraspedBodyWhereTheyAre) {
-  ViewerSettings viewerSettings;
-  viewerSettings.visible = false;
-  Viewer viewer(viewerSettings);
+  Viewer viewer(offScreen());
   viewer.camera().target = btVector3(0, 1.2f, 0);
   viewer.camera().distance = 6;
   Image image;
@@ -156,9 +165,7 @@ TEST(ClampScene, RendersTheJawsAndTheGraspedBodyWhereTheyAre) {
     if (sample.time < 3.5) return true;  // lifted and held
     Overlay overlay;
     overlay.tools = {&clamp.jaw(0), &clamp.jaw(1)};
-    viewer.render(world, overlay);
-    EXPECT_TRUE(viewer.screenshot("viewer_clamp.png"));
-    image = load("viewer_clamp.png");
+    image = renderToImage(viewer, world, overlay, "viewer_clamp.png");
     // The jaw nearer the camera, at a point on its face turned to the camera, away from its
     // centre's force line.
     const btVector3 eye = viewer.camera().eye();
@@ -182,9 +189,7 @@ TEST(ClampScene, RendersTheJawsAndTheGraspedBodyWhereTheyAre) {
 // A soft multibody world: the gripper's finger links, drawn as the tools they are, and the cube they
 // hold up.
 TEST(GripperScene, RendersTheFingersAndTheHeldCubeWhereTheyAre) {
-  ViewerSettings viewerSettings;
-  viewerSettings.visible = false;
-  Viewer viewer(viewerSettings);
+  Viewer viewer(offScreen());
   viewer.camera().target = btVector3(0, 0.3f, 0);
   viewer.camera().distance = 1.4f;
   Image image;
@@ -197,9 +202,7 @@ TEST(GripperScene, RendersTheFingersAndTheHeldCubeWhereTheyAre) {
     const btSoftBody& cube = *world.getSoftBodyArray()[0];
     Overlay overlay;
     overlay.tools = {fingers[0], fingers[1]};
-    viewer.render(world, overlay);
-    EXPECT_TRUE(viewer.screenshot("viewer_gripper.png"));
-    image = load("viewer_gripper.png");
+    image = renderToImage(viewer, world, overlay, "viewer_gripper.png");
     // The middle of a finger's outer face, on the finger whose outer face the camera sees.
     const btVector3 eye = viewer.camera().eye();
     for (Tool* finger : fingers) {
@@ -234,9 +237,7 @@ TEST(GripperScene, RendersTheFingersAndTheHeldCubeWhereTheyAre) {
 
 #ifdef THINTOOL_HAVE_HAPTICS
 TEST(ClampSession, RendersTheLoadFedBackAsAnArrow) {
-  ViewerSettings viewerSettings;
-  viewerSettings.visible = false;
-  Viewer viewer(viewerSettings);
+  Viewer viewer(offScreen());
   viewer.camera().target = btVector3(0, 1.2f, 0);
   viewer.camera().distance = 6;
   Image image;
@@ -250,9 +251,7 @@ TEST(ClampSession, RendersTheLoadFedBackAsAnArrow) {
     const btVector3 start(-0.7f, btScalar(sample.bodyCentreHeight), 1.2f);  // in front of the grasp
     overlay.arrows.push_back({start, start + toBt(sample.onClamp) * btScalar(0.1)});
     arrowMiddle = start + toBt(sample.onClamp) * btScalar(0.05);
-    viewer.render(world, overlay);
-    EXPECT_TRUE(viewer.screenshot("viewer_clamp_session.png"));
-    image = load("viewer_clamp_session.png");
+    image = renderToImage(viewer, world, overlay, "viewer_clamp_session.png");
     return false;
   };
   haptics::ReplayDevice device =
