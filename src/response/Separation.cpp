@@ -21,6 +21,12 @@ constexpr Real kTurnedAway = Real(0.5);
 // Samples of the arc: a turn of 180° at 5° a sample needs 36; the cap only guards settings.
 constexpr int kMostSamples = 64;
 
+// The piece's pose at each sample of its motion, start and end included: poses holds
+// kMostSamples + 1.
+void samplePoses(const PieceMotion& motion, Pose* poses) {
+  for (int k = 0; k <= motion.samples(); ++k) poses[k] = motion.at(Real(k) / Real(motion.samples()));
+}
+
 // The rotation R with R = rotationAboutAxis(axis, angle), angle in [0, π].
 void axisAngleOf(const Mat3& r, Vec3& outAxis, Real& outAngle) {
   const Real trace = r.row[0].x + r.row[1].y + r.row[2].z;
@@ -1000,7 +1006,7 @@ SeparationCounts separateFromPiece(const ToolModel& piece, const PieceMotion& mo
   const Pose& end = motion.end();
   const Pose& start = motion.start();
   Pose poses[kMostSamples + 1];
-  for (int k = 0; k <= motion.samples(); ++k) poses[k] = motion.at(Real(k) / Real(motion.samples()));
+  samplePoses(motion, poses);
   const Aabb near = piece.bounds.expanded(clearance);
   const Real travel = farthestPath(piece, motion, poses);
 
@@ -1094,7 +1100,7 @@ SeparationCounts separateFromPiece(const ToolModel& piece, const PieceMotion& mo
 SeparationCounts carryMeetingFaces(const ToolModel& piece, const PieceMotion& motion,
                                    const SeparationSettings& settings, SeparationPatch& patch) {
   Pose poses[kMostSamples + 1];
-  for (int k = 0; k <= motion.samples(); ++k) poses[k] = motion.at(Real(k) / Real(motion.samples()));
+  samplePoses(motion, poses);
   SeparationCounts counts = carryAndCount(piece, motion, settings, true, false, noOthers, patch);
   // Another piece's last pass may have pushed a node through this one after this one's passes had
   // judged it: it ends outside, carried through by both readings, and no face of it meets the piece
@@ -1136,7 +1142,7 @@ SeparationCounts keepNodesOutside(const ToolModel& piece, const PieceMotion& mot
   SeparationCounts counts;
   THINTOOL_ASSERT(patch.consistent());
   Pose poses[kMostSamples + 1];
-  for (int k = 0; k <= motion.samples(); ++k) poses[k] = motion.at(Real(k) / Real(motion.samples()));
+  samplePoses(motion, poses);
   for (Index v = 0; v < patch.vertexCount(); ++v) {
     if (!(patch.inverseMasses[v] > 0)) continue;
     if (putNodeOutside(piece, motion, poses, settings.clearance, v, patch).fix) ++counts.nodesMoved;
@@ -1149,7 +1155,7 @@ SeparationCounts keepNodesOutside(const ToolModel& piece, const PieceMotion& mot
 SeparationCounts carryCrossedFaces(const ToolModel& piece, const PieceMotion& motion,
                                    const SeparationSettings& settings, SeparationPatch& patch) {
   Pose poses[kMostSamples + 1];
-  for (int k = 0; k <= motion.samples(); ++k) poses[k] = motion.at(Real(k) / Real(motion.samples()));
+  samplePoses(motion, poses);
   const auto crossed = [&](std::size_t f) {
     const std::array<Index, 3>& face = patch.faces[f];
     if (motion.samples() > 1) return !keptItsSideAlongArc(piece, motion, poses, patch, face);
