@@ -9,11 +9,9 @@
 #include <thintool/core/Error.h>
 #include <thintool/thintool.h>
 
-#include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>
 #include <BulletSoftBody/btDefaultSoftBodySolver.h>
 #include <BulletSoftBody/btSoftBodyHelpers.h>
 #include <BulletSoftBody/btSoftBodyRigidBodyCollisionConfiguration.h>
-#include <BulletSoftBody/btSoftMultiBodyDynamicsWorld.h>
 #include <BulletSoftBody/btSoftRigidDynamicsWorld.h>
 #include <btBulletDynamicsCommon.h>
 
@@ -61,11 +59,8 @@ struct World {
   std::unique_ptr<btCollisionConfiguration> configuration;
   std::unique_ptr<btCollisionDispatcher> dispatcher;
   btDbvtBroadphase broadphase;
-  std::unique_ptr<btConstraintSolver> solver;
   std::unique_ptr<btSoftBodySolver> softSolver;
-  std::unique_ptr<btDiscreteDynamicsWorld> world;
-  btSoftRigidDynamicsWorld* softRigidWorld = nullptr;          // world, when of that kind
-  btSoftMultiBodyDynamicsWorld* softMultiBodyWorld = nullptr;  // world, when of that kind
+  std::unique_ptr<scenes::SoftWorldOfKind> world;
   btBoxShape groundShape{btVector3(20, 1, 20)};
   btDefaultMotionState groundMotion{btTransform(btQuaternion::getIdentity(), btVector3(0, -1, 0))};
   std::unique_ptr<btRigidBody> ground;
@@ -77,18 +72,14 @@ struct World {
 
   ~World() {
     for (std::size_t i = 0; i < tools.size(); ++i) {
-      if (thinTools[i] != nullptr) removeTool(*world, *tools[i]);
-      world->removeRigidBody(tools[i].get());
+      if (thinTools[i] != nullptr) removeTool(world->world(), *tools[i]);
+      world->world().removeRigidBody(tools[i].get());
     }
     if (soft != nullptr) {
-      if (softRigidWorld != nullptr) {
-        softRigidWorld->removeSoftBody(soft);
-      } else {
-        softMultiBodyWorld->removeSoftBody(soft);
-      }
+      world->removeSoftBody(soft);
       delete soft;
     }
-    if (ground) world->removeRigidBody(ground.get());
+    if (ground) world->world().removeRigidBody(ground.get());
     world.reset();
   }
 };
@@ -236,24 +227,11 @@ RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
     w.configuration = std::move(configuration);
   }
   w.dispatcher = std::make_unique<btCollisionDispatcher>(w.configuration.get());
-  if (options.world == scenes::WorldKind::SoftRigid) {
-    w.solver = std::make_unique<btSequentialImpulseConstraintSolver>();
-    auto softRigid = std::make_unique<btSoftRigidDynamicsWorld>(w.dispatcher.get(), &w.broadphase, w.solver.get(),
-                                                                w.configuration.get(), w.softSolver.get());
-    w.softRigidWorld = softRigid.get();
-    w.world = std::move(softRigid);
-  } else {
-    auto solver = std::make_unique<btMultiBodyConstraintSolver>();
-    auto softMultiBody = std::make_unique<btSoftMultiBodyDynamicsWorld>(w.dispatcher.get(), &w.broadphase, solver.get(),
-                                                                        w.configuration.get(), w.softSolver.get());
-    w.solver = std::move(solver);
-    w.softMultiBodyWorld = softMultiBody.get();
-    w.world = std::move(softMultiBody);
-  }
-  btDiscreteDynamicsWorld& world = *w.world;
+  w.world = std::make_unique<scenes::SoftWorldOfKind>(options.world, *w.dispatcher, w.broadphase, *w.configuration,
+                                                      *w.softSolver);
+  btDiscreteDynamicsWorld& world = w.world->world();
   world.setGravity(toBt(scene.gravity));
-  btSoftBodyWorldInfo& info =
-      w.softRigidWorld != nullptr ? w.softRigidWorld->getWorldInfo() : w.softMultiBodyWorld->getWorldInfo();
+  btSoftBodyWorldInfo& info = w.world->worldInfo();
   info.m_gravity = world.getGravity();
   info.m_sparsesdf.setDefaultVoxelsz(btScalar(variant.voxel));
   info.m_sparsesdf.Reset();
@@ -274,11 +252,7 @@ RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
   soft.setTotalMass(btScalar(scene.soft.mass));
   const double softMargin = scene.soft.margin.value_or(variant.margin);
   soft.getCollisionShape()->setMargin(btScalar(softMargin));
-  if (w.softRigidWorld != nullptr) {
-    w.softRigidWorld->addSoftBody(w.soft);
-  } else {
-    w.softMultiBodyWorld->addSoftBody(w.soft);
-  }
+  w.world->addSoftBody(w.soft);
 
   std::vector<GroundTruthPiece> pieces;
   std::vector<double> toolReach;  // m, the farthest corner of each tool's pieces from its origin

@@ -2,11 +2,9 @@
 // Copyright (c) 2026 The ThinTool developers
 #include "SoftBallScene.h"
 
-#include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>
 #include <BulletSoftBody/btDefaultSoftBodySolver.h>
 #include <BulletSoftBody/btSoftBodyHelpers.h>
 #include <BulletSoftBody/btSoftBodyRigidBodyCollisionConfiguration.h>
-#include <BulletSoftBody/btSoftMultiBodyDynamicsWorld.h>
 #include <BulletSoftBody/btSoftRigidDynamicsWorld.h>
 #include <btBulletDynamicsCommon.h>
 
@@ -167,7 +165,6 @@ struct SoftBallScene::Bullet {
   std::unique_ptr<btCollisionConfiguration> configuration;
   std::unique_ptr<btCollisionDispatcher> dispatcher;
   btDbvtBroadphase broadphase;
-  std::unique_ptr<btConstraintSolver> constraintSolver;
   std::unique_ptr<btSoftBodySolver> softSolver;
   btBoxShape groundShape{btVector3(20, 1, 20)};
   btDefaultMotionState groundMotion;
@@ -192,30 +189,18 @@ SoftBallScene::SoftBallScene(const SceneSettings& settings) : m_settings(setting
     b.softSolver = std::make_unique<btDefaultSoftBodySolver>();
   }
   b.dispatcher = std::make_unique<btCollisionDispatcher>(b.configuration.get());
-  if (settings.world == WorldKind::SoftRigid) {
-    b.constraintSolver = std::make_unique<btSequentialImpulseConstraintSolver>();
-    auto world = std::make_unique<btSoftRigidDynamicsWorld>(b.dispatcher.get(), &b.broadphase, b.constraintSolver.get(),
-                                                            b.configuration.get(), b.softSolver.get());
-    m_softRigidWorld = world.get();
-    m_world = std::move(world);
-  } else {
-    auto solver = std::make_unique<btMultiBodyConstraintSolver>();
-    auto world = std::make_unique<btSoftMultiBodyDynamicsWorld>(b.dispatcher.get(), &b.broadphase, solver.get(),
-                                                                b.configuration.get(), b.softSolver.get());
-    b.constraintSolver = std::move(solver);
-    m_softMultiBodyWorld = world.get();
-    m_world = std::move(world);
-  }
-  m_world->setGravity(btVector3(0, -10, 0));
+  m_world = std::make_unique<SoftWorldOfKind>(settings.world, *b.dispatcher, b.broadphase, *b.configuration,
+                                              *b.softSolver);
+  m_world->world().setGravity(btVector3(0, -10, 0));
   btSoftBodyWorldInfo& info = worldInfo();
-  info.m_gravity = m_world->getGravity();
+  info.m_gravity = m_world->world().getGravity();
   info.m_sparsesdf.setDefaultVoxelsz(btScalar(variant.voxel));
   info.m_sparsesdf.Reset();
 
   b.groundMotion.setWorldTransform(btTransform(btQuaternion::getIdentity(), atOrigin(0, -1, 0)));
   b.toolMotion.setWorldTransform(btTransform(btQuaternion::getIdentity(), atOrigin(0, kParkedHeight, 0)));
   b.ground = std::make_unique<btRigidBody>(btRigidBody::btRigidBodyConstructionInfo(0, &b.groundMotion, &b.groundShape));
-  m_world->addRigidBody(b.ground.get());
+  m_world->world().addRigidBody(b.ground.get());
 
   m_ball = settings.exactBallHull
                ? createExactHullEllipsoid(info, atOrigin(0, 1.3, 0), btVector3(1, 1, 1), settings.ballResolution)
@@ -230,11 +215,7 @@ SoftBallScene::SoftBallScene(const SceneSettings& settings) : m_settings(setting
   m_ball->m_cfg.kDP = btScalar(1 - std::pow(0.95, 60 * settings.timeStep / settings.substeps));
   m_ball->setTotalMass(1);
   m_ball->getCollisionShape()->setMargin(btScalar(variant.margin));
-  if (m_softRigidWorld != nullptr) {
-    m_softRigidWorld->addSoftBody(m_ball);
-  } else {
-    m_softMultiBodyWorld->addSoftBody(m_ball);
-  }
+  m_world->addSoftBody(m_ball);
 
   const btScalar halfThickness = btScalar(settings.toolThickness / 2);
   const btVector3 half = settings.tool == ToolShape::Needle ? btVector3(0.5, halfThickness, halfThickness)
@@ -254,7 +235,7 @@ SoftBallScene::SoftBallScene(const SceneSettings& settings) : m_settings(setting
   b.tool->setCollisionFlags(b.tool->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
   b.tool->setActivationState(DISABLE_DEACTIVATION);
   m_tool = b.tool.get();
-  m_world->addRigidBody(m_tool);
+  m_world->world().addRigidBody(m_tool);
   if (thinTool) {
     thintool::ToolOptions options = settings.toolOptions;
     options.swept = options.swept && settings.algorithm == Algorithm::ThinTool;
@@ -264,7 +245,7 @@ SoftBallScene::SoftBallScene(const SceneSettings& settings) : m_settings(setting
       options.skinGrowthSpeed = std::numeric_limits<thintool::Real>::infinity();
     }
     try {
-      m_thinTool = &thintool::addTool(*m_world, *m_tool, options);
+      m_thinTool = &thintool::addTool(m_world->world(), *m_tool, options);
     } catch (...) {
       tearDown();  // the destructor does not run for a constructor that throws
       throw;
@@ -276,16 +257,12 @@ SoftBallScene::~SoftBallScene() { tearDown(); }
 
 void SoftBallScene::tearDown() {
   if (m_thinTool != nullptr) {
-    thintool::removeTool(*m_world, *m_tool);
+    thintool::removeTool(m_world->world(), *m_tool);
   }
-  m_world->removeRigidBody(m_tool);
-  if (m_softRigidWorld != nullptr) {
-    m_softRigidWorld->removeSoftBody(m_ball);
-  } else {
-    m_softMultiBodyWorld->removeSoftBody(m_ball);
-  }
+  m_world->world().removeRigidBody(m_tool);
+  m_world->removeSoftBody(m_ball);
   delete m_ball;
-  m_world->removeRigidBody(m_bullet->ground.get());
+  m_world->world().removeRigidBody(m_bullet->ground.get());
   m_world.reset();
 }
 
@@ -305,12 +282,12 @@ double SoftBallScene::step(const btTransform& toolPose) {
 double SoftBallScene::step() {
   const btScalar dt = btScalar(m_settings.timeStep);
   const auto start = std::chrono::steady_clock::now();
-  m_world->stepSimulation(dt, m_settings.substeps, dt / btScalar(m_settings.substeps));
+  m_world->world().stepSimulation(dt, m_settings.substeps, dt / btScalar(m_settings.substeps));
   return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
 }
 
 void SoftBallScene::makeToolDynamic(double mass, const btTransform& pose) {
-  m_world->removeRigidBody(m_tool);
+  m_world->world().removeRigidBody(m_tool);
   btVector3 inertia;
   m_tool->getCollisionShape()->calculateLocalInertia(btScalar(mass), inertia);
   m_tool->setMassProps(btScalar(mass), inertia);
@@ -325,22 +302,20 @@ void SoftBallScene::makeToolDynamic(double mass, const btTransform& pose) {
   m_tool->setAngularFactor(0);
   m_tool->setLinearFactor(btVector3(0, 1, 0));
   m_tool->updateInertiaTensor();
-  m_world->addRigidBody(m_tool);
+  m_world->world().addRigidBody(m_tool);
 }
 
 btRigidBody& SoftBallScene::ground() { return *m_bullet->ground; }
 
 btSoftRigidDynamicsWorld& SoftBallScene::world() {
-  if (m_softRigidWorld == nullptr) {
+  if (m_world->softRigid() == nullptr) {
     throw std::logic_error(
         "SoftBallScene::world(): the scene is in a btSoftMultiBodyDynamicsWorld; use dynamicsWorld()");
   }
-  return *m_softRigidWorld;
+  return *m_world->softRigid();
 }
 
-btSoftBodyWorldInfo& SoftBallScene::worldInfo() {
-  return m_softRigidWorld != nullptr ? m_softRigidWorld->getWorldInfo() : m_softMultiBodyWorld->getWorldInfo();
-}
+btSoftBodyWorldInfo& SoftBallScene::worldInfo() { return m_world->worldInfo(); }
 
 ToolBox SoftBallScene::toolBox() const {
   ToolBox box;

@@ -20,7 +20,6 @@
 #include <vector>
 
 class btDiscreteDynamicsWorld;
-class btSoftMultiBodyDynamicsWorld;
 class btSoftRigidDynamicsWorld;
 class btSoftBody;
 struct btSoftBodyWorldInfo;
@@ -97,7 +96,7 @@ class SoftBallScene {
   /// The world of a WorldKind::SoftRigid scene; throws std::logic_error for the other kind.
   btSoftRigidDynamicsWorld& world();
   /// The world, of either kind.
-  btDiscreteDynamicsWorld& dynamicsWorld() { return *m_world; }
+  btDiscreteDynamicsWorld& dynamicsWorld() { return m_world->world(); }
   btSoftBodyWorldInfo& worldInfo();
   btSoftBody& ball() { return *m_ball; }
   btRigidBody& toolBody() { return *m_tool; }
@@ -123,9 +122,7 @@ class SoftBallScene {
   SceneSettings m_settings;
   struct Bullet;
   std::unique_ptr<Bullet> m_bullet;
-  std::unique_ptr<btDiscreteDynamicsWorld> m_world;
-  btSoftRigidDynamicsWorld* m_softRigidWorld = nullptr;          // m_world, when of that kind
-  btSoftMultiBodyDynamicsWorld* m_softMultiBodyWorld = nullptr;  // m_world, when of that kind
+  std::unique_ptr<SoftWorldOfKind> m_world;
   btSoftBody* m_ball = nullptr;
   btRigidBody* m_tool = nullptr;
   thintool::Tool* m_thinTool = nullptr;
