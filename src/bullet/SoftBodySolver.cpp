@@ -92,25 +92,23 @@ btScalar roundedUp(Real v) {
   return Real(rounded) < v ? std::nextafter(rounded, std::numeric_limits<btScalar>::infinity()) : rounded;
 }
 
-// Mass, kinetic energy and momentum of a soft body's free nodes, each at the velocity velocityOf
-// gives it.
-struct BodyMotion {
-  double mass = 0;
-  double kinetic = 0;
-  btVector3 momentum{0, 0, 0};
-};
+// A free node's shares of its body's motion at velocity v: ½·m·v² and m·v. One definition for
+// the pass over the nodes and for the shares the solve keeps, so that both sum to the same bits.
+double kineticShareOf(const btVector3& v, double m) { return 0.5 * m * double(v.length2()); }
+btVector3 momentumShareOf(const btVector3& v, double m) { return v * btScalar(m); }
 
+// The motion of a soft body's free nodes, each at the velocity velocityOf gives it.
 template <class VelocityOf>
-BodyMotion motionOf(const btSoftBody& softBody, VelocityOf velocityOf) {
-  BodyMotion motion;
+detail::BodyMotion motionOf(const btSoftBody& softBody, VelocityOf velocityOf) {
+  detail::BodyMotion motion;
   for (int i = 0; i < softBody.m_nodes.size(); ++i) {
     const btSoftBody::Node& node = softBody.m_nodes[i];
     if (!(node.m_im > 0)) continue;
     const double m = 1 / double(node.m_im);
     const btVector3 velocity = velocityOf(node);
     motion.mass += m;
-    motion.kinetic += 0.5 * m * double(velocity.length2());
-    motion.momentum += velocity * btScalar(m);
+    motion.kinetic += kineticShareOf(velocity, m);
+    motion.momentum += momentumShareOf(velocity, m);
   }
   return motion;
 }
@@ -216,7 +214,7 @@ void SoftBodySolverImpl::solveSoftBodies() {
     const bool shorten = energy.predicted >= 0 && energy.lastWordFollows;
     if (collectHolds(body) || lastWordReaches(body) || shorten) {
       const btScalar longestMove = shorten ? btScalar(fastestAllowed(energy)) * body.m_sst.sdt : BT_LARGE_FLOAT;
-      solveInStages(body, longestMove);
+      solveInStages(body, longestMove, energy.predicted >= 0);
     } else {
       body.solveConstraints();
     }
@@ -405,7 +403,7 @@ double SoftBodySolverImpl::fastestAllowed(const BodyEnergy& energy) {
   return std::max(energy.speedFactor * std::max(1.0, energy.toolAtMovedNodes), energy.predictedFastest);
 }
 
-void SoftBodySolverImpl::solveInStages(btSoftBody& body, btScalar longestMove) {
+void SoftBodySolverImpl::solveInStages(btSoftBody& body, btScalar longestMove, bool guarded) {
   // Bullet 3.24's btSoftBody::solveConstraints (btSoftBody.cpp), stage for stage and in its
   // arithmetic, so that a body solved here moves exactly as Bullet would move it.
   body.applyClusters(false);
@@ -470,6 +468,13 @@ void SoftBodySolverImpl::solveInStages(btSoftBody& body, btScalar longestMove) {
         m_hasStepReach && config.diterations == 0 && body.m_clusters.size() == 0 ? &topologyOf(body) : nullptr;
     NodeSurvey survey;
     if (surveyed != nullptr) survey = beginSurvey(*surveyed, m_step + 1);
+    // The guard's shares, where nothing after this pass but the last word changes a velocity.
+    SoftBodyCache* shared =
+        guarded && config.diterations == 0 && body.m_clusters.size() == 0 ? &topologyOf(body) : nullptr;
+    if (shared != nullptr) {
+      shared->solvedMass = 0;
+      shared->motionSolved = true;
+    }
     const btScalar longestMoveSquared = longestMove < BT_LARGE_FLOAT ? longestMove * longestMove : BT_LARGE_FLOAT;
     Index shortened = 0;
     Index nonFinite = 0;
@@ -485,6 +490,7 @@ void SoftBodySolverImpl::solveInStages(btSoftBody& body, btScalar longestMove) {
       }
       node.m_v = (node.m_x - node.m_q) * velocityFactor;
       node.m_f = btVector3(0, 0, 0);
+      if (shared != nullptr) shared->solvedMass += keepShares(*shared, i, node.m_v, node.m_im);
       if (surveyed != nullptr) {
         surveyNode(survey, *surveyed, i, node.m_x, node.m_q, m_dynamicToolsActive && !(node.m_im > 0));
       }
@@ -759,14 +765,7 @@ void SoftBodySolverImpl::guardEnergy() {
     // The energy about the centre of mass, as the solve left it: the body's motion as a whole is
     // the tool's push or its fall, which the bound must not damp.
     btScalar fastestSquared = 0;
-    btVector3 low(BT_LARGE_FLOAT, BT_LARGE_FLOAT, BT_LARGE_FLOAT);
-    btVector3 high = -low;
-    const BodyMotion motion = motionOf(softBody, [&](const btSoftBody::Node& node) {
-      fastestSquared = std::max(fastestSquared, node.m_v.length2());
-      low.setMin(node.m_x);
-      high.setMax(node.m_x);
-      return node.m_v;
-    });
+    const BodyMotion motion = motionAfterLastWord(softBody, fastestSquared);
     const double fastest = double(btSqrt(fastestSquared));
     if (!(motion.mass > 0)) continue;
     const btVector3 mean = motion.momentum / btScalar(motion.mass);
@@ -786,8 +785,18 @@ void SoftBodySolverImpl::guardEnergy() {
       cache->boundStep = m_step;
       // In a grasp, the holds on both sides take back what the body's pressure kicks (the clamp's
       // vessel); against one piece the body bulges away with the kick (generated seed 748).
-      const double acrossBody =
-          energy.piecesHolding > 1 ? double((high - low).length() * softBody.m_sst.isdt) : 0.0;
+      double acrossBody = 0;
+      if (energy.piecesHolding > 1) {
+        btVector3 low(BT_LARGE_FLOAT, BT_LARGE_FLOAT, BT_LARGE_FLOAT);
+        btVector3 high = -low;
+        for (int i = 0; i < softBody.m_nodes.size(); ++i) {
+          const btSoftBody::Node& node = softBody.m_nodes[i];
+          if (!(node.m_im > 0)) continue;
+          low.setMin(node.m_x);
+          high.setMax(node.m_x);
+        }
+        acrossBody = double((high - low).length() * softBody.m_sst.isdt);
+      }
       cache->nextForceBound =
           std::max(energy.speedFactor * std::max({energy.restingSpeed, energy.toolFastest, fastestLeft}), acrossBody);
     };
@@ -821,6 +830,49 @@ void SoftBodySolverImpl::guardEnergy() {
       lastWord.nonFiniteWrites += nonFinite;
     });
   }
+}
+
+BodyMotion SoftBodySolverImpl::motionAfterLastWord(const btSoftBody& softBody, btScalar& fastestSquared) {
+  fastestSquared = 0;
+  SoftBodyCache* cache = findCache(softBody);
+  if (cache == nullptr || !cache->motionSolved) {
+    return motionOf(softBody, [&](const btSoftBody::Node& node) {
+      fastestSquared = std::max(fastestSquared, node.m_v.length2());
+      return node.m_v;
+    });
+  }
+  for (const Index changed : cache->changed) {
+    const btSoftBody::Node& node = softBody.m_nodes[static_cast<int>(changed)];
+    keepShares(*cache, static_cast<int>(changed), node.m_v, node.m_im);
+    cache->isChanged[changed] = 0;
+  }
+  cache->changed.clear();
+  cache->motionSolved = false;
+  // Adding a pinned node's zero shares leaves each sum as it was, to the bit.
+  BodyMotion motion;
+  motion.mass = cache->solvedMass;
+  const auto nodeCount = static_cast<std::size_t>(softBody.m_nodes.size());
+  for (std::size_t i = 0; i < nodeCount; ++i) {
+    motion.kinetic += cache->kineticShare[i];
+    motion.momentum += cache->momentumShare[i];
+    fastestSquared = std::max(fastestSquared, cache->speedSquared[i]);
+  }
+  return motion;
+}
+
+double SoftBodySolverImpl::keepShares(SoftBodyCache& cache, int i, const btVector3& v, btScalar im) {
+  const auto n = static_cast<std::size_t>(i);
+  if (!(im > 0)) {
+    cache.kineticShare[n] = 0;
+    cache.momentumShare[n] = btVector3(0, 0, 0);
+    cache.speedSquared[n] = 0;
+    return 0;
+  }
+  const double m = 1 / double(im);
+  cache.kineticShare[n] = kineticShareOf(v, m);
+  cache.momentumShare[n] = momentumShareOf(v, m);
+  cache.speedSquared[n] = v.length2();
+  return m;
 }
 
 bool SoftBodySolverImpl::separate(Tool& tool, Stage stage) {
@@ -916,6 +968,12 @@ SoftBodySolverImpl::SoftBodyCache& SoftBodySolverImpl::topologyOf(const btSoftBo
     }
   }
   cache.isCandidate.assign(nodeCount, 0);
+  cache.kineticShare.assign(nodeCount, 0);
+  cache.momentumShare.assign(nodeCount, btVector3(0, 0, 0));
+  cache.speedSquared.assign(nodeCount, 0);
+  cache.isChanged.assign(nodeCount, 0);
+  cache.changed.clear();
+  cache.motionSolved = false;
   cache.candidates.clear();
   return cache;
 }
@@ -1255,6 +1313,10 @@ SeparationCounts SoftBodySolverImpl::separatePiece(Tool& tool, const ToolModel& 
     cache.bounds.include(toVec3(moved));
     const btVector3 positionBefore = node.m_x;
     const btVector3 velocityBefore = node.m_v;
+    if (cache.motionSolved && cache.isChanged[id] == 0) {
+      cache.isChanged[id] = 1;
+      cache.changed.push_back(id);
+    }
     node.m_x = moved;
     const Vec3& normal = m_patch.directions[v];
     const Vec3 toolPoint = m_patch.positions[v];

@@ -25,6 +25,13 @@ namespace detail {
 
 class DynamicBody;
 
+// Mass, kinetic energy and momentum of a soft body's free nodes at some velocity of each.
+struct BodyMotion {
+  double mass = 0;
+  double kinetic = 0;
+  btVector3 momentum{0, 0, 0};
+};
+
 class SoftBodySolverImpl {
  public:
   /// softBodySet: the owning solver's soft bodies (btDefaultSoftBodySolver::m_softBodySet).
@@ -130,6 +137,18 @@ class SoftBodySolverImpl {
     double endFastest = -1;
     double ownFastest = -1;
     int speedStep = -1;
+    // Where the solve's last pass is ThinTool's and the energy guard bounds the body (motionSolved),
+    // that pass leaves each node's shares of the guard's sums, zero for a pinned node: ½·m·v², m·v
+    // and v², 28 bytes a node where Bullet's node is 256. After the last word the guard
+    // recomputes the shares of the nodes it changed (changed, isChanged) and adds them all up in
+    // the nodes' order, as its pass over the nodes would, to the same bits.
+    std::vector<double> kineticShare;
+    std::vector<btVector3> momentumShare;
+    std::vector<btScalar> speedSquared;
+    double solvedMass = 0;
+    bool motionSolved = false;
+    std::vector<Index> changed;
+    std::vector<unsigned char> isChanged;
   };
   SoftBodyCache& cacheOf(const btSoftBody& softBody);
   SoftBodyCache* findCache(const btSoftBody& softBody);  // nullptr: none yet
@@ -188,7 +207,14 @@ class SoftBodySolverImpl {
   // word's survey in its last pass over the nodes.
   // longestMove (m): a guarded body's bound on each node's move over the step (fastestAllowed),
   // BT_LARGE_FLOAT for none.
-  void solveInStages(btSoftBody& body, btScalar longestMove);
+  // guarded: the energy guard bounds the body; its shares are kept in the last pass.
+  void solveInStages(btSoftBody& body, btScalar longestMove, bool guarded);
+  // A guarded body's motion and its fastest free node's squared speed after the last word: from
+  // the shares of the solve's last pass where it kept them, else from a pass over the nodes.
+  BodyMotion motionAfterLastWord(const btSoftBody& softBody, btScalar& fastestSquared);
+  // Node i's shares of the guard's sums at velocity v, with inverse mass im
+  // (SoftBodyCache::kineticShare); returns its mass, zero for a pinned node.
+  static double keepShares(SoftBodyCache& cache, int i, const btVector3& v, btScalar im);
   // Calls report with the last-word diagnostics of each tool with a live pair on the body.
   template <typename Report>
   void reportToToolsNear(const btSoftBody& body, const Report& report);
