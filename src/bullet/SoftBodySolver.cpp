@@ -196,8 +196,13 @@ void SoftBodySolver::predictMotion(btScalar timeStep) { m_impl->predictMotion(ti
 namespace detail {
 
 SoftBodySolverImpl::SoftBodySolverImpl(CollisionConfiguration& configuration,
-                                       btAlignedObjectArray<btSoftBody*>& softBodySet)
-    : m_configuration(configuration), m_softBodySet(softBodySet) {}
+                                       btAlignedObjectArray<btSoftBody*>& softBodySet, bool deformable)
+    : m_configuration(configuration), m_softBodySet(softBodySet), m_deformable(deformable) {}
+
+bool SoftBodySolverImpl::actsOn(const btSoftBody& body) const {
+  const StockReason reason = detail::stockReason(body);
+  return detail::lastWordActsOn(reason) || (m_deformable && reason == StockReason::DeformableWorld);
+}
 
 void SoftBodySolverImpl::solveSoftBodies() {
   // As btDefaultSoftBodySolverImpl::solveConstraints: every active body of the solver's set, in order.
@@ -224,7 +229,7 @@ void SoftBodySolverImpl::solveSoftBodies() {
 bool SoftBodySolverImpl::lastWordReaches(const btSoftBody& body) const {
   if (!m_hasStepReach) return false;
   return std::any_of(m_active.begin(), m_active.end(), [&](const Tool* tool) {
-    return !detail::ignores(body, tool->body()) && detail::lastWordActsOn(detail::stockReason(body));
+    return !detail::ignores(body, tool->body()) && actsOn(body);
   });
 }
 
@@ -536,12 +541,74 @@ void SoftBodySolverImpl::solveConstraints(btScalar timeStep) {
   const auto measureStart = Clock::now();
   measureEnergy(timeStep);
   const auto measureEnd = Clock::now();
+  // Before Bullet's solve, which moves no tool: the solve surveys the bodies it solves for them.
+  beginLastWord();
+  solveSoftBodies();
+  ++m_step;
+  separateEverything();
+  const auto guardStart = Clock::now();
+  guardEnergy();
+  const auto guardEnd = Clock::now();
+  // The guard's time, before and after Bullet's solve, shared among the tools that have it on.
+  const auto guarding = std::count_if(m_configuration.tools().begin(), m_configuration.tools().end(),
+                                      [](const Tool* tool) { return tool->state().options.energyGuard.enabled; });
+  if (guarding > 0) {
+    const double share = (std::chrono::duration<double, std::micro>(measureEnd - measureStart).count() +
+                          std::chrono::duration<double, std::micro>(guardEnd - guardStart).count()) /
+                         double(guarding);
+    for (Tool* tool : m_configuration.tools()) {
+      if (!tool->state().options.energyGuard.enabled) continue;
+      tool->state().lastWord.microseconds += share;
+      tool->state().lastWord.energyGuardMicroseconds += share;
+    }
+  }
+  endLastWord();
+}
+
+void SoftBodySolverImpl::rememberStarts() {
+  m_starts.resize(static_cast<std::size_t>(m_softBodySet.size()));
+  const bool anyTool = std::any_of(m_configuration.tools().begin(), m_configuration.tools().end(),
+                                   [](const Tool* tool) { return tool->state().options.separation.enabled; });
+  for (int s = 0; s < m_softBodySet.size(); ++s) {
+    std::vector<btVector3>& starts = m_starts[static_cast<std::size_t>(s)];
+    starts.clear();
+    const btSoftBody& body = *m_softBodySet[s];
+    if (!anyTool || !body.isActive()) continue;
+    starts.resize(static_cast<std::size_t>(body.m_nodes.size()));
+    for (int i = 0; i < body.m_nodes.size(); ++i) starts[static_cast<std::size_t>(i)] = body.m_nodes[i].m_x;
+  }
+}
+
+void SoftBodySolverImpl::lastWordAfterTransforms() {
+  beginLastWord();
+  // Bullet's applyTransforms left each node's m_q at its end; the last word reads the node's
+  // start there, as in the classic solver, and the deformable solver finds m_q at the end again.
+  std::vector<btSoftBody*> reached;
+  for (int s = 0; s < m_softBodySet.size(); ++s) {
+    btSoftBody& body = *m_softBodySet[s];
+    const std::vector<btVector3>& starts = m_starts[static_cast<std::size_t>(s)];
+    if (!lastWordReaches(body) || starts.size() != static_cast<std::size_t>(body.m_nodes.size())) continue;
+    for (int i = 0; i < body.m_nodes.size(); ++i) body.m_nodes[i].m_q = starts[static_cast<std::size_t>(i)];
+    reached.push_back(&body);
+  }
+  ++m_step;
+  separateEverything();
+  for (btSoftBody* body : reached) {
+    for (int i = 0; i < body->m_nodes.size(); ++i) {
+      btSoftBody::Node& node = body->m_nodes[i];
+      node.m_q = node.m_x;
+      node.m_vn = node.m_v;
+    }
+  }
+  endLastWord();
+}
+
+void SoftBodySolverImpl::beginLastWord() {
   for (Tool* tool : m_configuration.tools()) {
     tool->state().holdWrench = Wrench{};
     tool->state().holdNodesShared = 0;
   }
-  // The tools whose last word runs, and where their pieces reach, before Bullet's solve, which
-  // moves no tool: the solve surveys the bodies it solves for them.
+  // The tools whose last word runs, and where their pieces reach.
   std::vector<Tool*>& tools = m_active;
   tools.clear();
   m_dynamicToolsActive = false;
@@ -562,8 +629,9 @@ void SoftBodySolverImpl::solveConstraints(btScalar timeStep) {
     }
   }
   m_hasStepReach = !tools.empty() && isFinite(m_stepReach.min) && isFinite(m_stepReach.max);
-  solveSoftBodies();
-  ++m_step;
+}
+
+void SoftBodySolverImpl::separateEverything() {
   // One piece's moves can push soft features into another (two jaws, two tools): the pieces take
   // turns until a pass moves nothing, or a pass had a single piece near soft features. Pieces
   // still pushing faces into each other after the last pass leave them to the last resort, which
@@ -571,33 +639,20 @@ void SoftBodySolverImpl::solveConstraints(btScalar timeStep) {
   for (int pass = 0; pass < kMostPasses; ++pass) {
     m_piecesNear = 0;
     bool moved = false;
-    for (Tool* tool : tools) {
+    for (Tool* tool : m_active) {
       moved = separate(*tool, Stage::Rounds) || moved;
     }
     if (!moved || m_piecesNear <= 1) break;
     if (pass + 1 == kMostPasses) {
-      for (Tool* tool : tools) separate(*tool, Stage::LastResort);
-      for (Tool* tool : tools) separate(*tool, Stage::NodesLast);
+      for (Tool* tool : m_active) separate(*tool, Stage::LastResort);
+      for (Tool* tool : m_active) separate(*tool, Stage::NodesLast);
     }
   }
   m_hasStepReach = false;
-  const auto guardStart = Clock::now();
-  guardEnergy();
-  const auto guardEnd = Clock::now();
-  // The guard's time, before and after Bullet's solve, shared among the tools that have it on.
-  const auto guarding = std::count_if(m_configuration.tools().begin(), m_configuration.tools().end(),
-                                      [](const Tool* tool) { return tool->state().options.energyGuard.enabled; });
-  if (guarding > 0) {
-    const double share = (std::chrono::duration<double, std::micro>(measureEnd - measureStart).count() +
-                          std::chrono::duration<double, std::micro>(guardEnd - guardStart).count()) /
-                         double(guarding);
-    for (Tool* tool : m_configuration.tools()) {
-      if (!tool->state().options.energyGuard.enabled) continue;
-      tool->state().lastWord.microseconds += share;
-      tool->state().lastWord.energyGuardMicroseconds += share;
-    }
-  }
-  for (Tool* tool : tools) {
+}
+
+void SoftBodySolverImpl::endLastWord() {
+  for (Tool* tool : m_active) {
     tool->state().separatedPose = toPose(tool->body().getWorldTransform());
     tool->state().hasSeparatedPose = true;
     tool->state().separationJump = false;
@@ -890,7 +945,7 @@ bool SoftBodySolverImpl::separate(Tool& tool, Stage stage) {
     findNearPieces(tool, p, motion);
     for (int s = 0; s < m_softBodySet.size(); ++s) {
       btSoftBody& softBody = *m_softBodySet[s];
-      if (detail::ignores(softBody, tool.body()) || !detail::lastWordActsOn(detail::stockReason(softBody))) continue;
+      if (detail::ignores(softBody, tool.body()) || !actsOn(softBody)) continue;
       const SeparationCounts piece = separatePiece(tool, tool.piece(p), motion, softBody, stage, m_nearPieces);
       moved = moved || piece.nodesMoved > 0 || piece.facesMoved > 0;
       counts.accumulate(piece);

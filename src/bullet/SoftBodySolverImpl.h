@@ -34,11 +34,19 @@ struct BodyMotion {
 
 class SoftBodySolverImpl {
  public:
-  /// softBodySet: the owning solver's soft bodies (btDefaultSoftBodySolver::m_softBodySet).
-  SoftBodySolverImpl(CollisionConfiguration& configuration, btAlignedObjectArray<btSoftBody*>& softBodySet);
+  /// softBodySet: the owning solver's soft bodies (btDefaultSoftBodySolver::m_softBodySet, or
+  /// btDeformableBodySolver::m_softBodies when deformable).
+  SoftBodySolverImpl(CollisionConfiguration& configuration, btAlignedObjectArray<btSoftBody*>& softBodySet,
+                     bool deformable = false);
 
+  // The classic solver's steps (SoftBodySolver).
   void solveConstraints(btScalar timeStep);
   void predictMotion(btScalar timeStep);
+
+  // The deformable solver's (DeformableBodySolver): before Bullet's applyTransforms, where each
+  // node begins the step; after it, the last word, with neither holds in a solve nor energy guard.
+  void rememberStarts();
+  void lastWordAfterTransforms();
 
  private:
   // The energy guard's measures of one soft body in this step (EnergyGuardSettings).
@@ -55,6 +63,15 @@ class SoftBodySolverImpl {
     bool boundForcesNextStep = false;
     bool lastWordFollows = false;  // a guarding tool's last word runs after the solve
   };
+
+  // Whether the last word keeps this body's nodes out of tools: the classic solver's bodies whose
+  // pairs are ThinTool's or faceless (lastWordActsOn), and every body of the deformable solver.
+  bool actsOn(const btSoftBody& body) const;
+  // The step's last word in three parts: which tools speak and where their pieces reach; the
+  // passes of every piece over the soft bodies; where the tools' next step starts.
+  void beginLastWord();
+  void separateEverything();
+  void endLastWord();
 
   // Where the tool's motion over this step starts: where the last word left it, or where it is
   // now after a jump (Tool::resetMotion).
@@ -302,6 +319,8 @@ class SoftBodySolverImpl {
   int m_step = 0;
   bool m_dynamicToolsActive = false;  // a tool of this step's last word is dynamic and takes reactions
   btAlignedObjectArray<btSoftBody*>& m_softBodySet;
+  bool m_deformable = false;
+  std::vector<std::vector<btVector3>> m_starts;  // per body of the set: each node where the step began (deformable)
 };
 
 }  // namespace detail

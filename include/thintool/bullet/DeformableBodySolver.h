@@ -1,0 +1,57 @@
+// SPDX-License-Identifier: Zlib
+// Copyright (c) 2026 The ThinTool developers
+#pragma once
+
+/// @file
+/// The last word in Bullet's deformable world: a solver to pass to btDeformableMultiBodyDynamicsWorld
+/// (and to its btDeformableMultiBodyConstraintSolver) where btDeformableBodySolver was.
+///
+///     thintool::CollisionConfiguration configuration;
+///     thintool::DeformableBodySolver deformableSolver(configuration);
+///     btDeformableMultiBodyConstraintSolver constraintSolver;
+///     constraintSolver.setDeformableSolver(&deformableSolver);
+///     btDeformableMultiBodyDynamicsWorld world(&dispatcher, &broadphase, &constraintSolver,
+///                                              &configuration, &deformableSolver);
+///
+/// Bullet's deformable world solves its bodies implicitly with its own rigid contacts, which it
+/// finds at one instant against a distance field of the tool: a thin or fast tool passes between
+/// them. This solver is Bullet's own in every stage; after its last one, applyTransforms, which
+/// moves each node to where the solve sends it, the tools of the configuration whose
+/// ToolOptions::separation is enabled put every soft node and face near them back on their side,
+/// as SoftBodySolver does in the classic worlds (response/Separation.h), with the node's velocity
+/// along its move the faster of its own and the tool's. The contacts inside the solve stay
+/// Bullet's (ToolDiagnostics::stockPairs counts those pairs as deformableWorld); neither holds in
+/// the solve nor the energy guard run here.
+///
+/// Not in thintool/thintool.h: Bullet's deformable headers declare helpers at global scope (a
+/// Clamp among them) that a program of the classic worlds need not see.
+
+#include <thintool/core/Api.h>
+
+#include <BulletSoftBody/btDeformableBodySolver.h>
+
+#include <memory>
+
+namespace thintool {
+
+class CollisionConfiguration;
+namespace detail {
+class SoftBodySolverImpl;
+}  // namespace detail
+
+class THINTOOL_API DeformableBodySolver : public btDeformableBodySolver {
+ public:
+  /// configuration: the world's, whose tools get the last word; it must outlive the solver.
+  explicit DeformableBodySolver(CollisionConfiguration& configuration);
+  ~DeformableBodySolver() override;
+  DeformableBodySolver(const DeformableBodySolver&) = delete;
+  DeformableBodySolver& operator=(const DeformableBodySolver&) = delete;
+
+  // See: btDeformableBodySolver::applyTransforms
+  void applyTransforms(btScalar timeStep) override;
+
+ private:
+  std::unique_ptr<detail::SoftBodySolverImpl> m_impl;
+};
+
+}  // namespace thintool
