@@ -182,11 +182,11 @@ SoftBallScene::SoftBallScene(const SceneSettings& settings) : m_settings(setting
   const bool thinTool = settings.algorithm == Algorithm::ThinTool || settings.algorithm == Algorithm::ThinToolPaper;
   if (thinTool) {
     auto configuration = std::make_unique<thintool::CollisionConfiguration>();
-    b.softSolver = std::make_unique<thintool::SoftBodySolver>(*configuration);
+    b.softSolver = softSolverFor(settings.world, configuration.get());
     b.configuration = std::move(configuration);
   } else {
     b.configuration = std::make_unique<btSoftBodyRigidBodyCollisionConfiguration>();
-    b.softSolver = std::make_unique<btDefaultSoftBodySolver>();
+    b.softSolver = softSolverFor(settings.world, nullptr);
   }
   b.dispatcher = std::make_unique<btCollisionDispatcher>(b.configuration.get());
   m_world = std::make_unique<SoftWorldOfKind>(settings.world, *b.dispatcher, b.broadphase, *b.configuration,
@@ -215,6 +215,10 @@ SoftBallScene::SoftBallScene(const SceneSettings& settings) : m_settings(setting
   m_ball->m_cfg.kDP = btScalar(1 - std::pow(0.95, 60 * settings.timeStep / settings.substeps));
   m_ball->setTotalMass(1);
   m_ball->getCollisionShape()->setMargin(btScalar(variant.margin));
+  if (settings.world == WorldKind::Deformable) {
+    // The deformable solver's own rigid contacts, on nodes and faces.
+    m_ball->m_cfg.collisions = btSoftBody::fCollision::SDF_RD | btSoftBody::fCollision::SDF_RDF;
+  }
   m_world->addSoftBody(m_ball);
 
   const btScalar halfThickness = btScalar(settings.toolThickness / 2);

@@ -93,9 +93,9 @@ class SoftBallScene {
   /// move vertically only (a device's slide).
   void makeToolDynamic(double mass, const btTransform& pose);
 
-  /// The world of a WorldKind::SoftRigid scene; throws std::logic_error for the other kind.
+  /// The world of a WorldKind::SoftRigid scene; throws std::logic_error for the other kinds.
   btSoftRigidDynamicsWorld& world();
-  /// The world, of either kind.
+  /// The world, of any kind.
   btDiscreteDynamicsWorld& dynamicsWorld() { return m_world->world(); }
   btSoftBodyWorldInfo& worldInfo();
   btSoftBody& ball() { return *m_ball; }

@@ -2,12 +2,31 @@
 // Copyright (c) 2026 The ThinTool developers
 #include "WorldKind.h"
 
+#include <thintool/bullet/DeformableBodySolver.h>
+#include <thintool/bullet/SoftBodySolver.h>
+#include <thintool/core/Error.h>
+
 #include <BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolver.h>
 #include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>
+#include <BulletSoftBody/btDefaultSoftBodySolver.h>
+#include <BulletSoftBody/btDeformableBodySolver.h>
+#include <BulletSoftBody/btDeformableGravityForce.h>
+#include <BulletSoftBody/btDeformableMassSpringForce.h>
+#include <BulletSoftBody/btDeformableMultiBodyConstraintSolver.h>
+#include <BulletSoftBody/btDeformableMultiBodyDynamicsWorld.h>
 #include <BulletSoftBody/btSoftMultiBodyDynamicsWorld.h>
 #include <BulletSoftBody/btSoftRigidDynamicsWorld.h>
 
 namespace thintool::scenes {
+
+std::unique_ptr<btSoftBodySolver> softSolverFor(WorldKind kind, CollisionConfiguration* thinTool) {
+  if (kind == WorldKind::Deformable) {
+    if (thinTool != nullptr) return std::make_unique<DeformableBodySolver>(*thinTool);
+    return std::make_unique<btDeformableBodySolver>();
+  }
+  if (thinTool != nullptr) return std::make_unique<SoftBodySolver>(*thinTool);
+  return std::make_unique<btDefaultSoftBodySolver>();
+}
 
 SoftWorldOfKind::SoftWorldOfKind(WorldKind kind, btDispatcher& dispatcher, btBroadphaseInterface& broadphase,
                                  btCollisionConfiguration& configuration, btSoftBodySolver& softSolver) {
@@ -17,37 +36,60 @@ SoftWorldOfKind::SoftWorldOfKind(WorldKind kind, btDispatcher& dispatcher, btBro
                                                             &softSolver);
     m_softRigid = world.get();
     m_world = std::move(world);
-  } else {
+  } else if (kind == WorldKind::SoftMultiBody) {
     auto solver = std::make_unique<btMultiBodyConstraintSolver>();
     auto world = std::make_unique<btSoftMultiBodyDynamicsWorld>(&dispatcher, &broadphase, solver.get(),
                                                                 &configuration, &softSolver);
     m_solver = std::move(solver);
     m_softMultiBody = world.get();
     m_world = std::move(world);
+  } else {
+    auto* deformableSolver = dynamic_cast<btDeformableBodySolver*>(&softSolver);
+    if (deformableSolver == nullptr) {
+      throw Error("SoftWorldOfKind: the deformable world needs a btDeformableBodySolver (softSolverFor)");
+    }
+    auto solver = std::make_unique<btDeformableMultiBodyConstraintSolver>();
+    solver->setDeformableSolver(deformableSolver);
+    auto world = std::make_unique<btDeformableMultiBodyDynamicsWorld>(&dispatcher, &broadphase, solver.get(),
+                                                                      &configuration, deformableSolver);
+    m_solver = std::move(solver);
+    m_deformable = world.get();
+    m_world = std::move(world);
   }
 }
 
 SoftWorldOfKind::~SoftWorldOfKind() {
-  m_world.reset();  // before its solver
+  m_world.reset();  // before its solver and the forces
 }
 
 btSoftBodyWorldInfo& SoftWorldOfKind::worldInfo() {
-  return m_softRigid != nullptr ? m_softRigid->getWorldInfo() : m_softMultiBody->getWorldInfo();
+  if (m_softRigid != nullptr) return m_softRigid->getWorldInfo();
+  if (m_softMultiBody != nullptr) return m_softMultiBody->getWorldInfo();
+  return m_deformable->getWorldInfo();
 }
 
 void SoftWorldOfKind::addSoftBody(btSoftBody* body) {
   if (m_softRigid != nullptr) {
     m_softRigid->addSoftBody(body);
-  } else {
+  } else if (m_softMultiBody != nullptr) {
     m_softMultiBody->addSoftBody(body);
+  } else {
+    m_deformable->addSoftBody(body);
+    m_forces.push_back(std::make_unique<btDeformableMassSpringForce>(btScalar(kDeformableSpring),
+                                                                     btScalar(kDeformableSpringDamping), true));
+    m_deformable->addForce(body, m_forces.back().get());
+    m_forces.push_back(std::make_unique<btDeformableGravityForce>(m_deformable->getGravity()));
+    m_deformable->addForce(body, m_forces.back().get());
   }
 }
 
 void SoftWorldOfKind::removeSoftBody(btSoftBody* body) {
   if (m_softRigid != nullptr) {
     m_softRigid->removeSoftBody(body);
-  } else {
+  } else if (m_softMultiBody != nullptr) {
     m_softMultiBody->removeSoftBody(body);
+  } else {
+    m_deformable->removeSoftBody(body);
   }
 }
 

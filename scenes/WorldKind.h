@@ -3,10 +3,13 @@
 #pragma once
 
 #include <memory>
+#include <vector>
 
 class btBroadphaseInterface;
 class btCollisionConfiguration;
 class btConstraintSolver;
+class btDeformableLagrangianForce;
+class btDeformableMultiBodyDynamicsWorld;
 class btDiscreteDynamicsWorld;
 class btDispatcher;
 class btSoftBody;
@@ -15,18 +18,36 @@ class btSoftMultiBodyDynamicsWorld;
 class btSoftRigidDynamicsWorld;
 struct btSoftBodyWorldInfo;
 
+namespace thintool {
+class CollisionConfiguration;
+}  // namespace thintool
+
 namespace thintool::scenes {
 
 /// The Bullet world a scene is built in.
 enum class WorldKind {
   SoftRigid,      ///< btSoftRigidDynamicsWorld, with btSequentialImpulseConstraintSolver
   SoftMultiBody,  ///< btSoftMultiBodyDynamicsWorld, with btMultiBodyConstraintSolver (PyBullet's soft world)
+  /// btDeformableMultiBodyDynamicsWorld, with btDeformableMultiBodyConstraintSolver; each soft body
+  /// is a mass-spring body (btDeformableMassSpringForce, kDeformableSpring) under gravity.
+  Deformable,
 };
 
-/// A world of either kind with its constraint solver, and the soft-body calls the two kinds do not
-/// share. Destroy it before the parts it was made with.
+/// The deformable kind's springs: elastic stiffness (N/m) and damping (N·s/m) of
+/// btDeformableMassSpringForce. The scenes' 1 kg ball keeps its shape under gravity with these at
+/// 1/60 s; with 30 N/m (Bullet's cloth examples) it folds flat, and from 150 N/m its solve diverges.
+inline constexpr double kDeformableSpring = 100;
+inline constexpr double kDeformableSpringDamping = 1;
+
+/// The soft-body solver a world of the kind takes: ThinTool's for the configuration when thinTool
+/// is given (SoftBodySolver, or DeformableBodySolver in the deformable world), else Bullet's own.
+std::unique_ptr<btSoftBodySolver> softSolverFor(WorldKind kind, CollisionConfiguration* thinTool);
+
+/// A world of any kind with its constraint solver, and the soft-body calls the kinds do not share.
+/// Destroy it before the parts it was made with.
 class SoftWorldOfKind {
  public:
+  /// softSolver: one softSolverFor(kind, ...) made.
   SoftWorldOfKind(WorldKind kind, btDispatcher& dispatcher, btBroadphaseInterface& broadphase,
                   btCollisionConfiguration& configuration, btSoftBodySolver& softSolver);
   ~SoftWorldOfKind();
@@ -34,9 +55,10 @@ class SoftWorldOfKind {
   SoftWorldOfKind& operator=(const SoftWorldOfKind&) = delete;
 
   btDiscreteDynamicsWorld& world() { return *m_world; }
-  /// Null for the other kind.
+  /// Null for the other kinds.
   btSoftRigidDynamicsWorld* softRigid() { return m_softRigid; }
   btSoftBodyWorldInfo& worldInfo();
+  /// In the deformable world, also the body's springs and gravity, which the world keeps here.
   void addSoftBody(btSoftBody* body);
   void removeSoftBody(btSoftBody* body);
 
@@ -45,6 +67,8 @@ class SoftWorldOfKind {
   std::unique_ptr<btDiscreteDynamicsWorld> m_world;
   btSoftRigidDynamicsWorld* m_softRigid = nullptr;          // m_world, when of that kind
   btSoftMultiBodyDynamicsWorld* m_softMultiBody = nullptr;  // m_world, when of that kind
+  btDeformableMultiBodyDynamicsWorld* m_deformable = nullptr;  // m_world, when of that kind
+  std::vector<std::unique_ptr<btDeformableLagrangianForce>> m_forces;
 };
 
 }  // namespace thintool::scenes

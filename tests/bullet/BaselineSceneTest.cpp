@@ -84,6 +84,25 @@ TEST(SoftMultiBodyWorld, ThinToolHoldsThePressThatStockLetsThrough) {
   EXPECT_LT(thin.metrics.maxPenetration, 1e-4);
 }
 
+// And in Bullet's deformable world (a mass-spring ball, Bullet's implicit solve with its own rigid
+// contacts inside it): the plate pressed at 8 m/s leaves faces pierced with stock; ThinTool's
+// DeformableBodySolver, whose last word follows the solve, holds it.
+TEST(DeformableWorld, ThinToolsLastWordHoldsThePressThatStockLetsThrough) {
+  PressSettings settings;
+  settings.scene.world = WorldKind::Deformable;
+  settings.speed = 8;
+  settings.scene.algorithm = Algorithm::StockE;
+  const PressResult stock = runPress(settings);
+  EXPECT_GT(stock.metrics.piercedSteps, 0);
+  EXPECT_GT(stock.metrics.maxPenetration, 1e-3);
+  settings.scene.algorithm = Algorithm::ThinTool;
+  const PressResult thin = runPress(settings);
+  EXPECT_EQ(thin.metrics.crossed, 0);
+  EXPECT_EQ(thin.metrics.piercedSteps, 0);
+  EXPECT_FALSE(thin.metrics.everInside);
+  EXPECT_LT(thin.metrics.maxPenetration, 1e-4);
+}
+
 TEST(StockPlate, FailsAtOneMetrePerSecondAndSixtyHertz) {
   // The realistic-skin stock set-up (E) and the defaults (A) both let the plate through.
   for (Algorithm stock : {Algorithm::StockE, Algorithm::StockA}) {

@@ -1,9 +1,12 @@
 // SPDX-License-Identifier: Zlib
 // Copyright (c) 2026 The ThinTool developers
+#include <thintool/bullet/DeformableBodySolver.h>
 #include <thintool/thintool.h>
 
 #include <BulletSoftBody/btDefaultSoftBodySolver.h>
 #include <BulletSoftBody/btDeformableBodySolver.h>
+#include <BulletSoftBody/btDeformableGravityForce.h>
+#include <BulletSoftBody/btDeformableMassSpringForce.h>
 #include <BulletSoftBody/btDeformableMultiBodyConstraintSolver.h>
 #include <BulletSoftBody/btDeformableMultiBodyDynamicsWorld.h>
 #include <BulletSoftBody/btSoftBodyHelpers.h>
@@ -17,6 +20,7 @@
 #include <cmath>
 #include <functional>
 #include <utility>
+#include <vector>
 
 #include <memory>
 #include <string>
@@ -297,6 +301,69 @@ TEST(Configuration, DeformableWorldPairsGoToBulletAndAreCounted) {
     world.removeSoftBody(ball);
     delete ball;
   }
+}
+
+// ThinTool's deformable solver changes nothing without a tool: a ball dropped on a box in the
+// deformable world steps bit for bit as with Bullet's own solver and configuration. With the box
+// registered as a tool, its last word runs after the solve while the pair stays Bullet's.
+TEST(Configuration, TheDeformableSolverWithoutToolsStepsAsBulletsAndSpeaksLastWithOne) {
+  const auto drop = [](bool thinTool, bool registerTool) {
+    std::unique_ptr<btCollisionConfiguration> configuration;
+    std::unique_ptr<btDeformableBodySolver> deformableSolver;
+    if (thinTool) {
+      auto ours = std::make_unique<CollisionConfiguration>();
+      deformableSolver = std::make_unique<DeformableBodySolver>(*ours);
+      configuration = std::move(ours);
+    } else {
+      configuration = std::make_unique<btSoftBodyRigidBodyCollisionConfiguration>();
+      deformableSolver = std::make_unique<btDeformableBodySolver>();
+    }
+    btCollisionDispatcher dispatcher(configuration.get());
+    btDbvtBroadphase broadphase;
+    btDeformableMultiBodyConstraintSolver solver;
+    solver.setDeformableSolver(deformableSolver.get());
+    btDeformableMultiBodyDynamicsWorld world(&dispatcher, &broadphase, &solver, configuration.get(),
+                                             deformableSolver.get());
+    btSoftBody* ball = btSoftBodyHelpers::CreateEllipsoid(world.getWorldInfo(), btVector3(0, 1.2, 0),
+                                                          btVector3(1, 1, 1), 63);
+    ball->m_cfg.collisions = btSoftBody::fCollision::SDF_RD | btSoftBody::fCollision::SDF_RDF;
+    ball->setTotalMass(1);
+    world.addSoftBody(ball);
+    btDeformableMassSpringForce springs(100, 1, true);
+    btDeformableGravityForce gravity(btVector3(0, -10, 0));
+    world.addForce(ball, &springs);
+    world.addForce(ball, &gravity);
+    btBoxShape groundShape(btVector3(2, 0.1, 2));
+    btDefaultMotionState motion(btTransform(btQuaternion::getIdentity(), btVector3(0, -0.1, 0)));
+    btRigidBody ground(btRigidBody::btRigidBodyConstructionInfo(0, &motion, &groundShape));
+    world.addRigidBody(&ground);
+    Tool* tool = registerTool ? &addTool(world, ground) : nullptr;
+    for (int i = 0; i < 90; ++i) world.stepSimulation(btScalar(1) / 60, 1, btScalar(1) / 60);
+    std::vector<btVector3> nodes;
+    for (int i = 0; i < ball->m_nodes.size(); ++i) nodes.push_back(ball->m_nodes[i].m_x);
+    if (tool != nullptr) {
+      const ToolStepReport& report = tool->report();
+      EXPECT_TRUE(report.diagnostics.lastWord.ran);
+      EXPECT_GT(report.diagnostics.stockPairs.deformableWorld, 0u);
+      EXPECT_EQ(report.diagnostics.lastWord.violations(), 0u);
+      removeTool(world, ground);
+    }
+    world.removeRigidBody(&ground);
+    world.removeSoftBody(ball);
+    delete ball;
+    return nodes;
+  };
+  const std::vector<btVector3> stock = drop(false, false);
+  const std::vector<btVector3> ours = drop(true, false);
+  ASSERT_EQ(stock.size(), ours.size());
+  for (std::size_t i = 0; i < stock.size(); ++i) {
+    EXPECT_EQ(stock[i].x(), ours[i].x());
+    EXPECT_EQ(stock[i].y(), ours[i].y());
+    EXPECT_EQ(stock[i].z(), ours[i].z());
+  }
+  EXPECT_LT(stock[0].y(), 1.0) << "the ball fell";
+  const std::vector<btVector3> held = drop(true, true);
+  for (const btVector3& node : held) EXPECT_GT(node.y(), -0.01) << "no node ends inside the ground";
 }
 
 }  // namespace
