@@ -9,7 +9,6 @@
 #include <thintool/core/Error.h>
 #include <thintool/thintool.h>
 
-#include <BulletSoftBody/btDefaultSoftBodySolver.h>
 #include <BulletSoftBody/btSoftBodyHelpers.h>
 #include <BulletSoftBody/btSoftBodyRigidBodyCollisionConfiguration.h>
 #include <BulletSoftBody/btSoftRigidDynamicsWorld.h>
@@ -220,10 +219,10 @@ RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
   World w;
   if (stock) {
     w.configuration = std::make_unique<btSoftBodyRigidBodyCollisionConfiguration>();
-    w.softSolver = std::make_unique<btDefaultSoftBodySolver>();
+    w.softSolver = scenes::softSolverFor(options.world, nullptr);
   } else {
     auto configuration = std::make_unique<CollisionConfiguration>();
-    w.softSolver = std::make_unique<SoftBodySolver>(*configuration);
+    w.softSolver = scenes::softSolverFor(options.world, configuration.get());
     w.configuration = std::move(configuration);
   }
   w.dispatcher = std::make_unique<btCollisionDispatcher>(w.configuration.get());
@@ -252,7 +251,12 @@ RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
   soft.setTotalMass(btScalar(scene.soft.mass));
   const double softMargin = scene.soft.margin.value_or(variant.margin);
   soft.getCollisionShape()->setMargin(btScalar(softMargin));
-  w.world->addSoftBody(w.soft);
+  if (options.world == scenes::WorldKind::Deformable) {
+    soft.m_cfg.collisions = btSoftBody::fCollision::SDF_RD | btSoftBody::fCollision::SDF_RDF;
+    w.world->addSoftBody(w.soft, scenes::deformableSpringFor(soft, scene.soft.linearStiffness, substep));
+  } else {
+    w.world->addSoftBody(w.soft);
+  }
 
   std::vector<GroundTruthPiece> pieces;
   std::vector<double> toolReach;  // m, the farthest corner of each tool's pieces from its origin

@@ -39,6 +39,12 @@ enum class WorldKind {
 inline constexpr double kDeformableSpring = 100;
 inline constexpr double kDeformableSpringDamping = 1;
 
+/// Springs for a body of any mesh, mass and step in the deformable world: a quarter as stiff, for
+/// its mass per node and the step (s), as the scenes' 1 kg ball is at kDeformableSpring and 1/60 s,
+/// times stiffness (0 to 1, the classic material's kLST). Bullet's deformable solve diverges on
+/// stiffer springs than the step allows, so the generated scenes tie the springs to it.
+double deformableSpringFor(const btSoftBody& body, double stiffness, double step);
+
 /// The soft-body solver a world of the kind takes: ThinTool's for the configuration when thinTool
 /// is given (SoftBodySolver, or DeformableBodySolver in the deformable world), else Bullet's own.
 std::unique_ptr<btSoftBodySolver> softSolverFor(WorldKind kind, CollisionConfiguration* thinTool);
@@ -58,8 +64,9 @@ class SoftWorldOfKind {
   /// Null for the other kinds.
   btSoftRigidDynamicsWorld* softRigid() { return m_softRigid; }
   btSoftBodyWorldInfo& worldInfo();
-  /// In the deformable world, also the body's springs and gravity, which the world keeps here.
-  void addSoftBody(btSoftBody* body);
+  /// In the deformable world, also the body's springs (elastic stiffness springStiffness, N/m)
+  /// and gravity, which the world keeps here.
+  void addSoftBody(btSoftBody* body, double springStiffness = kDeformableSpring);
   void removeSoftBody(btSoftBody* body);
 
  private:

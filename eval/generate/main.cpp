@@ -48,6 +48,9 @@ inside the soft body, pierced faces, penetration deeper than 0.1 mm, non-finite 
                      times the tool's friction (FrictionSettings, BulletSettings::frictionFromBodies)
   --soft-multibody   build each scene in btSoftMultiBodyDynamicsWorld (PyBullet's soft world)
                      instead of btSoftRigidDynamicsWorld
+  --deformable       build each scene in btDeformableMultiBodyDynamicsWorld: the soft body a
+                     mass-spring body (springs tied to its node mass and the step), Bullet's
+                     implicit solve and rigid contacts, ThinTool's last word after it
   --within-thickness judge only the scenes in which every tool moved less than its own thickness in
                      every step (the narrowest width of its thinnest piece); the rest run, and are
                      counted apart
@@ -121,6 +124,7 @@ int main(int argc, char** argv) {
   bool scanFaces = false;
   bool friction = false;
   bool softMultiBody = false;
+  bool deformable = false;
   bool withinThickness = false;
   std::string sceneFolder = THINTOOL_EVAL_SCENES;
   try {
@@ -160,6 +164,8 @@ int main(int argc, char** argv) {
         friction = true;
       } else if (arg == "--soft-multibody") {
         softMultiBody = true;
+      } else if (arg == "--deformable") {
+        deformable = true;
       } else if (arg == "--within-thickness") {
         withinThickness = true;
       } else if (arg == "--verbose") {
@@ -205,7 +211,9 @@ int main(int argc, char** argv) {
       if (verbose) std::printf("%s\n", describeScene(scene).c_str());
       RunOptions options;
       using thintool::scenes::WorldKind;
-      options.world = softMultiBody ? WorldKind::SoftMultiBody : WorldKind::SoftRigid;
+      options.world = deformable ? WorldKind::Deformable
+                      : softMultiBody ? WorldKind::SoftMultiBody
+                                      : WorldKind::SoftRigid;
       if (verbose) {
         options.settled = [](double bottom, double top) {
           std::printf("settled: the soft body spans heights %.4f to %.4f m\n", bottom, top);
@@ -233,12 +241,13 @@ int main(int argc, char** argv) {
     energy += verdict.energy;
     refused += verdict.refused;
     const std::string reach = holdReach.has_value() ? " --hold-reach " + formatNumber(*holdReach) : "";
-    std::printf("seed %llu failed: %s; reproduce: %s --seed %llu --algorithm %s%s%s%s%s%s%s%s%s%s --verbose\n",
+    std::printf("seed %llu failed: %s; reproduce: %s --seed %llu --algorithm %s%s%s%s%s%s%s%s%s%s%s --verbose\n",
                 static_cast<unsigned long long>(seed), joinReasons(verdict).c_str(), argv[0],
                 static_cast<unsigned long long>(seed), algorithmKey(algorithm), lastWord ? "" : " --no-last-word",
                 holds ? "" : " --no-holds", reach.c_str(), energyGuard ? "" : " --no-energy-guard",
                 boundForces ? "" : " --no-force-bound", scanFaces ? " --scan-faces" : "",
                 friction ? " --friction" : "", softMultiBody ? " --soft-multibody" : "",
+                deformable ? " --deformable" : "",
                 withinThickness ? " --within-thickness" : "");
     std::fflush(stdout);
   }
