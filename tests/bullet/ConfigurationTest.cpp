@@ -1,12 +1,11 @@
 // SPDX-License-Identifier: Zlib
 // Copyright (c) 2026 The ThinTool developers
-#include <thintool/bullet/DeformableBodySolver.h>
 #include <thintool/thintool.h>
+
+#include "WorldKind.h"
 
 #include <BulletSoftBody/btDefaultSoftBodySolver.h>
 #include <BulletSoftBody/btDeformableBodySolver.h>
-#include <BulletSoftBody/btDeformableGravityForce.h>
-#include <BulletSoftBody/btDeformableMassSpringForce.h>
 #include <BulletSoftBody/btDeformableMultiBodyConstraintSolver.h>
 #include <BulletSoftBody/btDeformableMultiBodyDynamicsWorld.h>
 #include <BulletSoftBody/btSoftBodyHelpers.h>
@@ -309,36 +308,30 @@ TEST(Configuration, DeformableWorldPairsGoToBulletAndAreCounted) {
 TEST(Configuration, TheDeformableSolverWithoutToolsStepsAsBulletsAndSpeaksLastWithOne) {
   const auto drop = [](bool thinTool, bool registerTool) {
     std::unique_ptr<btCollisionConfiguration> configuration;
-    std::unique_ptr<btDeformableBodySolver> deformableSolver;
+    std::unique_ptr<btSoftBodySolver> softSolver;
     if (thinTool) {
       auto ours = std::make_unique<CollisionConfiguration>();
-      deformableSolver = std::make_unique<DeformableBodySolver>(*ours);
+      softSolver = scenes::softSolverFor(scenes::WorldKind::Deformable, ours.get());
       configuration = std::move(ours);
     } else {
       configuration = std::make_unique<btSoftBodyRigidBodyCollisionConfiguration>();
-      deformableSolver = std::make_unique<btDeformableBodySolver>();
+      softSolver = scenes::softSolverFor(scenes::WorldKind::Deformable, nullptr);
     }
     btCollisionDispatcher dispatcher(configuration.get());
     btDbvtBroadphase broadphase;
-    btDeformableMultiBodyConstraintSolver solver;
-    solver.setDeformableSolver(deformableSolver.get());
-    btDeformableMultiBodyDynamicsWorld world(&dispatcher, &broadphase, &solver, configuration.get(),
-                                             deformableSolver.get());
-    btSoftBody* ball = btSoftBodyHelpers::CreateEllipsoid(world.getWorldInfo(), btVector3(0, 1.2, 0),
+    scenes::SoftWorldOfKind world(scenes::WorldKind::Deformable, dispatcher, broadphase, *configuration, *softSolver);
+    world.world().setGravity(btVector3(0, -10, 0));
+    btSoftBody* ball = btSoftBodyHelpers::CreateEllipsoid(world.worldInfo(), btVector3(0, 1.2, 0),
                                                           btVector3(1, 1, 1), 63);
     ball->m_cfg.collisions = btSoftBody::fCollision::SDF_RD | btSoftBody::fCollision::SDF_RDF;
     ball->setTotalMass(1);
     world.addSoftBody(ball);
-    btDeformableMassSpringForce springs(100, 1, true);
-    btDeformableGravityForce gravity(btVector3(0, -10, 0));
-    world.addForce(ball, &springs);
-    world.addForce(ball, &gravity);
     btBoxShape groundShape(btVector3(2, 0.1, 2));
     btDefaultMotionState motion(btTransform(btQuaternion::getIdentity(), btVector3(0, -0.1, 0)));
     btRigidBody ground(btRigidBody::btRigidBodyConstructionInfo(0, &motion, &groundShape));
-    world.addRigidBody(&ground);
-    Tool* tool = registerTool ? &addTool(world, ground) : nullptr;
-    for (int i = 0; i < 90; ++i) world.stepSimulation(btScalar(1) / 60, 1, btScalar(1) / 60);
+    world.world().addRigidBody(&ground);
+    Tool* tool = registerTool ? &addTool(world.world(), ground) : nullptr;
+    for (int i = 0; i < 90; ++i) world.world().stepSimulation(btScalar(1) / 60, 1, btScalar(1) / 60);
     std::vector<btVector3> nodes;
     for (int i = 0; i < ball->m_nodes.size(); ++i) nodes.push_back(ball->m_nodes[i].m_x);
     if (tool != nullptr) {
@@ -346,9 +339,9 @@ TEST(Configuration, TheDeformableSolverWithoutToolsStepsAsBulletsAndSpeaksLastWi
       EXPECT_TRUE(report.diagnostics.lastWord.ran);
       EXPECT_GT(report.diagnostics.stockPairs.deformableWorld, 0u);
       EXPECT_EQ(report.diagnostics.lastWord.violations(), 0u);
-      removeTool(world, ground);
+      removeTool(world.world(), ground);
     }
-    world.removeRigidBody(&ground);
+    world.world().removeRigidBody(&ground);
     world.removeSoftBody(ball);
     delete ball;
     return nodes;
