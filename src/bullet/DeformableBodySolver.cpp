@@ -11,6 +11,11 @@ DeformableBodySolver::DeformableBodySolver(CollisionConfiguration& configuration
 
 DeformableBodySolver::~DeformableBodySolver() = default;
 
+void DeformableBodySolver::predictMotion(btScalar solverdt) {
+  m_impl->rememberSpeeds();
+  btDeformableBodySolver::predictMotion(solverdt);
+}
+
 void DeformableBodySolver::applyTransforms(btScalar timeStep) {
   m_impl->rememberStarts();
   btDeformableBodySolver::applyTransforms(timeStep);

@@ -45,6 +45,7 @@ class SoftBodySolverImpl {
 
   // The deformable solver's (DeformableBodySolver): before Bullet's applyTransforms, where each
   // node begins the step; after it, the last word, with neither holds in a solve nor energy guard.
+  void rememberSpeeds();  // before Bullet's predictMotion: the fastest node of each body
   void rememberStarts();
   void lastWordAfterTransforms();
 
@@ -64,6 +65,11 @@ class SoftBodySolverImpl {
     bool lastWordFollows = false;  // a guarding tool's last word runs after the solve
   };
 
+  // In the deformable world, the guard's bound on the body's node speed (m/s), negative for none;
+  // and, within it, the moves of Bullet's solve (moves: m_q holding each node's start) or, after
+  // the last word, the velocities.
+  double deformableSpeedBound(const btSoftBody& body, double startFastest) const;
+  void boundDeformableSpeeds(btSoftBody& body, double allowed, bool moves);
   // Whether the last word keeps this body's nodes out of tools: the classic solver's bodies whose
   // pairs are ThinTool's or faceless (lastWordActsOn), and every body of the deformable solver.
   bool actsOn(const btSoftBody& body) const;
@@ -320,7 +326,11 @@ class SoftBodySolverImpl {
   bool m_dynamicToolsActive = false;  // a tool of this step's last word is dynamic and takes reactions
   btAlignedObjectArray<btSoftBody*>& m_softBodySet;
   bool m_deformable = false;
-  std::vector<std::vector<btVector3>> m_starts;  // per body of the set: each node where the step began (deformable)
+  // Deformable: per body of the set, each node where the step began, the fastest free node
+  // then (m/s); the bodies the step's last word reached.
+  std::vector<std::vector<btVector3>> m_starts;
+  std::vector<double> m_startFastest;
+  std::vector<int> m_reached;
 };
 
 }  // namespace detail

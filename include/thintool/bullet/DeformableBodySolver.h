@@ -19,9 +19,12 @@
 /// moves each node to where the solve sends it, the tools of the configuration whose
 /// ToolOptions::separation is enabled put every soft node and face near them back on their side,
 /// as SoftBodySolver does in the classic worlds (response/Separation.h), with the node's velocity
-/// along its move the faster of its own and the tool's. The contacts inside the solve stay
-/// Bullet's (ToolDiagnostics::stockPairs counts those pairs as deformableWorld); neither holds in
-/// the solve nor the energy guard run here.
+/// along its move the faster of its own and the tool's. Then, for tools with the energy guard on
+/// (EnergyGuardSettings), no node of a body the last word reached moves faster than speedFactor
+/// times the faster of the tools' fastest corner and restingSpeed, or than the body's fastest node
+/// at the start of the step: the guard's speed bound, without its energy bound or its bound on the
+/// next step's forces. The contacts inside the solve stay Bullet's (ToolDiagnostics::stockPairs
+/// counts those pairs as deformableWorld), and there are no holds in the solve.
 ///
 /// Not in thintool/thintool.h: Bullet's deformable headers declare helpers at global scope (a
 /// Clamp among them) that a program of the classic worlds need not see.
@@ -47,6 +50,8 @@ class THINTOOL_API DeformableBodySolver : public btDeformableBodySolver {
   DeformableBodySolver(const DeformableBodySolver&) = delete;
   DeformableBodySolver& operator=(const DeformableBodySolver&) = delete;
 
+  // See: btDeformableBodySolver::predictMotion
+  void predictMotion(btScalar solverdt) override;
   // See: btDeformableBodySolver::applyTransforms
   void applyTransforms(btScalar timeStep) override;
 
