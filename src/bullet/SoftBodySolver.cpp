@@ -598,13 +598,28 @@ void SoftBodySolverImpl::lastWordAfterTransforms() {
   beginLastWord();
   // Bullet's applyTransforms left each node's m_q at its end; the last word reads the node's
   // start there, as in the classic solver, and the deformable solver finds m_q at the end again.
+  // The bodies whose nodes' moves over the step meet the step's reach.
   m_reached.clear();
+  m_isReached.assign(static_cast<std::size_t>(m_softBodySet.size()), 0);
   for (int s = 0; s < m_softBodySet.size(); ++s) {
     btSoftBody& body = *m_softBodySet[s];
     const std::vector<btVector3>& starts = m_starts[static_cast<std::size_t>(s)];
     if (!lastWordReaches(body) || starts.size() != static_cast<std::size_t>(body.m_nodes.size())) continue;
+    btVector3 low(BT_LARGE_FLOAT, BT_LARGE_FLOAT, BT_LARGE_FLOAT);
+    btVector3 high = -low;
+    for (int i = 0; i < body.m_nodes.size(); ++i) {
+      const btVector3& start = starts[static_cast<std::size_t>(i)];
+      low.setMin(start);
+      high.setMax(start);
+      low.setMin(body.m_nodes[i].m_x);
+      high.setMax(body.m_nodes[i].m_x);
+    }
+    // A node that is not finite escapes the box: the body is looked at, as the gather must.
+    const bool finite = isFinite(toVec3(low)) && isFinite(toVec3(high));
+    if (finite && !m_stepReach.overlaps(Aabb{toVec3(low), toVec3(high)})) continue;
     for (int i = 0; i < body.m_nodes.size(); ++i) body.m_nodes[i].m_q = starts[static_cast<std::size_t>(i)];
     m_reached.push_back(s);
+    m_isReached[static_cast<std::size_t>(s)] = 1;
   }
   // The guard's speed bound before the last word, on the moves Bullet's solve made, and after it,
   // on the velocities.
@@ -1025,6 +1040,7 @@ bool SoftBodySolverImpl::separate(Tool& tool, Stage stage) {
     for (int s = 0; s < m_softBodySet.size(); ++s) {
       btSoftBody& softBody = *m_softBodySet[s];
       if (detail::ignores(softBody, tool.body()) || !actsOn(softBody)) continue;
+      if (m_deformable && m_isReached[static_cast<std::size_t>(s)] == 0) continue;  // its m_q is not its start
       const SeparationCounts piece = separatePiece(tool, tool.piece(p), motion, softBody, stage, m_nearPieces);
       moved = moved || piece.nodesMoved > 0 || piece.facesMoved > 0;
       counts.accumulate(piece);

@@ -331,6 +331,7 @@ class SoftBodySolverImpl {
   std::vector<std::vector<btVector3>> m_starts;
   std::vector<double> m_startFastest;
   std::vector<int> m_reached;
+  std::vector<unsigned char> m_isReached;  // per body of the set
 };
 
 }  // namespace detail
