@@ -624,8 +624,8 @@ void SoftBodySolverImpl::lastWordAfterTransforms() {
   // The guard's speed bound before the last word, on the moves Bullet's solve made, and after it,
   // on the velocities.
   const auto boundOf = [&](int s) {
-    const double startFastest = static_cast<std::size_t>(s) < m_startFastest.size() ? m_startFastest[static_cast<std::size_t>(s)] : 0;
-    return deformableSpeedBound(*m_softBodySet[s], startFastest);
+    const auto i = static_cast<std::size_t>(s);
+    return deformableSpeedBound(*m_softBodySet[s], i < m_startFastest.size() ? m_startFastest[i] : 0);
   };
   for (const int s : m_reached) boundDeformableSpeeds(*m_softBodySet[s], boundOf(s), true);
   ++m_step;
