@@ -270,6 +270,8 @@ void SoftBallScene::tearDown() {
   m_world.reset();
 }
 
+void SoftBallScene::setGravity(const btVector3& gravity) { m_world->setGravity(gravity); }
+
 void SoftBallScene::settle() {
   const int steps = static_cast<int>(std::lround(m_settings.settleSeconds / m_settings.timeStep));
   const btTransform parked(btQuaternion::getIdentity(), atOrigin(0, kParkedHeight, 0));

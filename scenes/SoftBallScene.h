@@ -83,6 +83,8 @@ class SoftBallScene {
   SoftBallScene(const SoftBallScene&) = delete;
   SoftBallScene& operator=(const SoftBallScene&) = delete;
 
+  /// Gravity for the world and its soft bodies (SoftWorldOfKind::setGravity), m/s².
+  void setGravity(const btVector3& gravity);
   /// Lets the ball settle for settings.settleSeconds with the tool parked far above.
   void settle();
   /// Moves the tool to toolPose and steps once; returns the wall time of stepSimulation (µs).

@@ -88,6 +88,14 @@ btSoftBodyWorldInfo& SoftWorldOfKind::worldInfo() {
   return m_deformable->getWorldInfo();
 }
 
+void SoftWorldOfKind::setGravity(const btVector3& gravity) {
+  m_world->setGravity(gravity);
+  worldInfo().m_gravity = gravity;
+  for (const auto& force : m_forces) {
+    if (auto* weight = dynamic_cast<btDeformableGravityForce*>(force.get())) weight->m_gravity = gravity;
+  }
+}
+
 void SoftWorldOfKind::addSoftBody(btSoftBody* body, double springStiffness) {
   if (m_softRigid != nullptr) {
     m_softRigid->addSoftBody(body);

@@ -16,6 +16,7 @@ class btSoftBody;
 class btSoftBodySolver;
 class btSoftMultiBodyDynamicsWorld;
 class btSoftRigidDynamicsWorld;
+class btVector3;
 struct btSoftBodyWorldInfo;
 
 namespace thintool {
@@ -64,6 +65,9 @@ class SoftWorldOfKind {
   /// Null for the other kinds.
   btSoftRigidDynamicsWorld* softRigid() { return m_softRigid; }
   btSoftBodyWorldInfo& worldInfo();
+  /// The world's gravity, its soft bodies' (btSoftBodyWorldInfo::m_gravity) and, in the deformable
+  /// world, that of the gravity forces it keeps.
+  void setGravity(const btVector3& gravity);
   /// In the deformable world, also the body's springs (elastic stiffness springStiffness, N/m)
   /// and gravity, which the world keeps here.
   void addSoftBody(btSoftBody* body, double springStiffness = kDeformableSpring);

@@ -34,8 +34,7 @@ inline std::unique_ptr<SoftBallScene> makeFloatingBall(Algorithm algorithm, int 
   auto scene = std::make_unique<SoftBallScene>(settings);
   scene->ball().getCollisionShape()->setMargin(btScalar(margin));
   scene->ball().m_cfg.kPR = 0;
-  scene->dynamicsWorld().setGravity(btVector3(0, 0, 0));
-  scene->worldInfo().m_gravity = btVector3(0, 0, 0);
+  scene->setGravity(btVector3(0, 0, 0));
   return scene;
 }
 

@@ -45,7 +45,7 @@ constexpr double kMargin = 0.05;     // m: the ball's margin, ThinTool's skin
 constexpr double kClearance = 0.08;  // m: the underside above the top at the start
 constexpr int kHoldSteps = 30;     // half a second
 
-void run(benchmark::State& state, Algorithm algorithm, bool scanFaces = false) {
+void run(benchmark::State& state, Algorithm algorithm, bool scanFaces = false, WorldKind world = WorldKind::SoftRigid) {
   const int faces = static_cast<int>(state.range(0));
   const double depth = 0.001 * static_cast<double>(state.range(1));  // m
   double stepSum = 0;
@@ -57,7 +57,7 @@ void run(benchmark::State& state, Algorithm algorithm, bool scanFaces = false) {
     state.PauseTiming();
     ToolOptions options;
     options.bullet.scanFaces = scanFaces;
-    const std::unique_ptr<SoftBallScene> floating = makeFloatingBall(algorithm, faces, kMargin, kTimeStep, options);
+    const std::unique_ptr<SoftBallScene> floating = makeFloatingBall(algorithm, faces, kMargin, kTimeStep, options, world);
     SoftBallScene& scene = *floating;
     if (scene.ball().m_faces.size() != faces) {
       state.SkipWithError("the ball does not have the faces asked for");
@@ -112,6 +112,17 @@ void ThinToolScanStep(benchmark::State& state) { run(state, Algorithm::ThinTool,
 BENCHMARK(StockStep)->Name("WholeStep/Stock") THINTOOL_STEP_SIZES;
 BENCHMARK(ThinToolStep)->Name("WholeStep/ThinTool") THINTOOL_STEP_SIZES;
 BENCHMARK(ThinToolScanStep)->Name("WholeStep/ThinToolScan") THINTOOL_STEP_SIZES;
+
+// Bullet's deformable world (a mass-spring ball, scenes::WorldKind::Deformable): the pairs are
+// Bullet's for both, and ThinTool's part of the step is its last word. Its implicit solve makes
+// the larger balls' steps long; three sizes.
+void StockDeformableStep(benchmark::State& state) { run(state, Algorithm::StockE, false, WorldKind::Deformable); }
+void ThinToolDeformableStep(benchmark::State& state) { run(state, Algorithm::ThinTool, false, WorldKind::Deformable); }
+#define THINTOOL_DEFORMABLE_STEP_SIZES                                                  \
+  ->ArgsProduct({{128, 1024, 4096}, {5, 30}})->UseManualTime()->Iterations(1) \
+      ->Unit(benchmark::kMicrosecond)
+BENCHMARK(StockDeformableStep)->Name("WholeStepDeformable/Stock") THINTOOL_DEFORMABLE_STEP_SIZES;
+BENCHMARK(ThinToolDeformableStep)->Name("WholeStepDeformable/ThinTool") THINTOOL_DEFORMABLE_STEP_SIZES;
 
 }  // namespace
 }  // namespace thintool::scenes
