@@ -598,9 +598,9 @@ void SoftBodySolverImpl::lastWordAfterTransforms() {
   beginLastWord();
   // Bullet's applyTransforms left each node's m_q at its end; the last word reads the node's
   // start there, as in the classic solver, and the deformable solver finds m_q at the end again.
-  // The bodies whose nodes' moves over the step meet the step's reach.
-  m_reached.clear();
-  m_isReached.assign(static_cast<std::size_t>(m_softBodySet.size()), 0);
+  // The bodies whose nodes' moves over the step meet the step's reach, each with the guard's
+  // speed bound, which the tools' poses set for the whole step.
+  m_speedBound.assign(static_cast<std::size_t>(m_softBodySet.size()), kNotReached);
   for (int s = 0; s < m_softBodySet.size(); ++s) {
     btSoftBody& body = *m_softBodySet[s];
     const std::vector<btVector3>& starts = m_starts[static_cast<std::size_t>(s)];
@@ -618,21 +618,17 @@ void SoftBodySolverImpl::lastWordAfterTransforms() {
     const bool finite = isFinite(toVec3(low)) && isFinite(toVec3(high));
     if (finite && !m_stepReach.overlaps(Aabb{toVec3(low), toVec3(high)})) continue;
     for (int i = 0; i < body.m_nodes.size(); ++i) body.m_nodes[i].m_q = starts[static_cast<std::size_t>(i)];
-    m_reached.push_back(s);
-    m_isReached[static_cast<std::size_t>(s)] = 1;
+    const auto b = static_cast<std::size_t>(s);
+    m_speedBound[b] = deformableSpeedBound(body, b < m_startFastest.size() ? m_startFastest[b] : 0);
+    // The bound before the last word, on the moves Bullet's solve made; after it, on the velocities.
+    boundDeformableSpeeds(body, m_speedBound[b], true);
   }
-  // The guard's speed bound before the last word, on the moves Bullet's solve made, and after it,
-  // on the velocities.
-  const auto boundOf = [&](int s) {
-    const auto i = static_cast<std::size_t>(s);
-    return deformableSpeedBound(*m_softBodySet[s], i < m_startFastest.size() ? m_startFastest[i] : 0);
-  };
-  for (const int s : m_reached) boundDeformableSpeeds(*m_softBodySet[s], boundOf(s), true);
   ++m_step;
   separateEverything();
-  for (const int s : m_reached) {
+  for (int s = 0; s < m_softBodySet.size(); ++s) {
+    if (m_speedBound[static_cast<std::size_t>(s)] == kNotReached) continue;
     btSoftBody& body = *m_softBodySet[s];
-    boundDeformableSpeeds(body, boundOf(s), false);
+    boundDeformableSpeeds(body, m_speedBound[static_cast<std::size_t>(s)], false);
     for (int i = 0; i < body.m_nodes.size(); ++i) {
       btSoftBody::Node& node = body.m_nodes[i];
       node.m_q = node.m_x;
@@ -1040,7 +1036,8 @@ bool SoftBodySolverImpl::separate(Tool& tool, Stage stage) {
     for (int s = 0; s < m_softBodySet.size(); ++s) {
       btSoftBody& softBody = *m_softBodySet[s];
       if (detail::ignores(softBody, tool.body()) || !actsOn(softBody)) continue;
-      if (m_deformable && m_isReached[static_cast<std::size_t>(s)] == 0) continue;  // its m_q is not its start
+      // A deformable body the step's reach misses keeps its end in m_q, not its start.
+      if (m_deformable && m_speedBound[static_cast<std::size_t>(s)] == kNotReached) continue;
       const SeparationCounts piece = separatePiece(tool, tool.piece(p), motion, softBody, stage, m_nearPieces);
       moved = moved || piece.nodesMoved > 0 || piece.facesMoved > 0;
       counts.accumulate(piece);

@@ -327,11 +327,12 @@ class SoftBodySolverImpl {
   btAlignedObjectArray<btSoftBody*>& m_softBodySet;
   bool m_deformable = false;
   // Deformable: per body of the set, each node where the step began, the fastest free node
-  // then (m/s); the bodies the step's last word reached.
+  // then (m/s), and in the step's last word its speed bound (deformableSpeedBound: negative for
+  // none), or kNotReached where the step's reach misses the body.
   std::vector<std::vector<btVector3>> m_starts;
   std::vector<double> m_startFastest;
-  std::vector<int> m_reached;
-  std::vector<unsigned char> m_isReached;  // per body of the set
+  std::vector<double> m_speedBound;
+  static constexpr double kNotReached = -2;
 };
 
 }  // namespace detail
