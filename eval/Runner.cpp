@@ -252,7 +252,6 @@ RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
   const double softMargin = scene.soft.margin.value_or(variant.margin);
   soft.getCollisionShape()->setMargin(btScalar(softMargin));
   if (options.world == scenes::WorldKind::Deformable) {
-    soft.m_cfg.collisions = btSoftBody::fCollision::SDF_RD | btSoftBody::fCollision::SDF_RDF;
     w.world->addSoftBody(w.soft, scenes::deformableSpringFor(soft, scene.soft.linearStiffness, substep));
   } else {
     w.world->addSoftBody(w.soft);

@@ -215,10 +215,6 @@ SoftBallScene::SoftBallScene(const SceneSettings& settings) : m_settings(setting
   m_ball->m_cfg.kDP = btScalar(1 - std::pow(0.95, 60 * settings.timeStep / settings.substeps));
   m_ball->setTotalMass(1);
   m_ball->getCollisionShape()->setMargin(btScalar(variant.margin));
-  if (settings.world == WorldKind::Deformable) {
-    // The deformable solver's own rigid contacts, on nodes and faces.
-    m_ball->m_cfg.collisions = btSoftBody::fCollision::SDF_RD | btSoftBody::fCollision::SDF_RDF;
-  }
   m_world->addSoftBody(m_ball);
 
   const btScalar halfThickness = btScalar(settings.toolThickness / 2);

@@ -102,6 +102,8 @@ void SoftWorldOfKind::addSoftBody(btSoftBody* body, double springStiffness) {
   } else if (m_softMultiBody != nullptr) {
     m_softMultiBody->addSoftBody(body);
   } else {
+    // The deformable solver's own rigid contacts, on nodes and faces.
+    body->m_cfg.collisions = btSoftBody::fCollision::SDF_RD | btSoftBody::fCollision::SDF_RDF;
     m_deformable->addSoftBody(body);
     m_forces.push_back(std::make_unique<btDeformableMassSpringForce>(btScalar(springStiffness),
                                                                      btScalar(kDeformableSpringDamping), true));

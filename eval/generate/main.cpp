@@ -183,6 +183,10 @@ int main(int argc, char** argv) {
     std::cerr << "thintool_generated: " << e.what() << "\n" << kUsage;
     return 2;
   }
+  if (softMultiBody && deformable) {
+    std::cerr << "thintool_generated: --soft-multibody and --deformable each name the world; give one\n";
+    return 2;
+  }
   if (seeds.empty()) {
     std::cerr << kUsage;
     return 2;

@@ -323,7 +323,6 @@ TEST(Configuration, TheDeformableSolverWithoutToolsStepsAsBulletsAndSpeaksLastWi
     world.world().setGravity(btVector3(0, -10, 0));
     btSoftBody* ball = btSoftBodyHelpers::CreateEllipsoid(world.worldInfo(), btVector3(0, 1.2, 0),
                                                           btVector3(1, 1, 1), 63);
-    ball->m_cfg.collisions = btSoftBody::fCollision::SDF_RD | btSoftBody::fCollision::SDF_RDF;
     ball->setTotalMass(1);
     world.addSoftBody(ball);
     btBoxShape groundShape(btVector3(2, 0.1, 2));
