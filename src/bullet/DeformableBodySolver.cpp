@@ -4,10 +4,51 @@
 
 #include "SoftBodySolverImpl.h"
 
+#include <thintool/bullet/CollisionConfiguration.h>
+#include <thintool/bullet/Convert.h>
+
 namespace thintool {
+namespace {
+
+bool isFinite(const btMatrix3x3& m) {
+  return thintool::isFinite(toVec3(m[0])) && thintool::isFinite(toVec3(m[1])) && thintool::isFinite(toVec3(m[2]));
+}
+
+// What the solve reads of a contact: its normal and offset, impulse matrices, anchor and masses,
+// and for a face the point and weights it spreads the impulse with.
+bool isFinite(const btSoftBody::DeformableRigidContact& contact) {
+  return thintool::isFinite(toVec3(contact.m_cti.m_normal)) && std::isfinite(contact.m_cti.m_offset) &&
+         isFinite(contact.m_c0) && isFinite(contact.m_c5) && thintool::isFinite(toVec3(contact.m_c1)) &&
+         std::isfinite(contact.m_c2) && std::isfinite(contact.m_c3) && std::isfinite(contact.m_c4);
+}
+
+bool isFinite(const btSoftBody::DeformableFaceRigidContact& contact) {
+  return isFinite(static_cast<const btSoftBody::DeformableRigidContact&>(contact)) &&
+         thintool::isFinite(toVec3(contact.m_contactPoint)) && thintool::isFinite(toVec3(contact.m_bary)) &&
+         thintool::isFinite(toVec3(contact.m_weights));
+}
+
+// Order is kept up to the first contact dropped, so that a step without one is Bullet's exactly.
+template <class Contact>
+long long dropNonFinite(btAlignedObjectArray<Contact>& contacts) {
+  long long dropped = 0;
+  for (int c = 0; c < contacts.size();) {
+    if (isFinite(contacts[c])) {
+      ++c;
+      continue;
+    }
+    contacts.swap(c, contacts.size() - 1);
+    contacts.pop_back();
+    ++dropped;
+  }
+  return dropped;
+}
+
+}  // namespace
 
 DeformableBodySolver::DeformableBodySolver(CollisionConfiguration& configuration)
-    : m_impl(std::make_unique<detail::SoftBodySolverImpl>(configuration, m_softBodies, true)) {}
+    : m_configuration(configuration),
+      m_impl(std::make_unique<detail::SoftBodySolverImpl>(configuration, m_softBodies, true)) {}
 
 DeformableBodySolver::~DeformableBodySolver() = default;
 
@@ -20,6 +61,16 @@ void DeformableBodySolver::applyTransforms(btScalar timeStep) {
   m_impl->rememberStarts();
   btDeformableBodySolver::applyTransforms(timeStep);
   m_impl->lastWordAfterTransforms();
+}
+
+void DeformableBodySolver::setConstraints(const btContactSolverInfo& infoGlobal) {
+  if (!m_configuration.tools().empty()) {
+    for (int s = 0; s < m_softBodies.size(); ++s) {
+      btSoftBody& body = *m_softBodies[s];
+      m_droppedContacts += dropNonFinite(body.m_nodeRigidContacts) + dropNonFinite(body.m_faceRigidContacts);
+    }
+  }
+  btDeformableBodySolver::setConstraints(infoGlobal);
 }
 
 }  // namespace thintool

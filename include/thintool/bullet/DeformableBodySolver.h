@@ -26,6 +26,11 @@
 /// next step's forces. The contacts inside the solve stay Bullet's (ToolDiagnostics::stockPairs
 /// counts those pairs as deformableWorld), and there are no holds in the solve.
 ///
+/// With a tool registered, the solver also drops each of Bullet's rigid contacts that its detection
+/// gave a value that is not finite, before the solve reads them (droppedContacts counts them): in
+/// the float build Bullet's face contact on a sliver face (a crushed fold) gets NaN barycentric
+/// weights, and the implicit solve spreads the NaN to every node of the body in one step.
+///
 /// Not in thintool/thintool.h: Bullet's deformable headers declare helpers at global scope (a
 /// Clamp among them) that a program of the classic worlds need not see.
 
@@ -54,8 +59,16 @@ class THINTOOL_API DeformableBodySolver : public btDeformableBodySolver {
   void predictMotion(btScalar solverdt) override;
   // See: btDeformableBodySolver::applyTransforms
   void applyTransforms(btScalar timeStep) override;
+  // See: btDeformableBodySolver::setConstraints
+  void setConstraints(const btContactSolverInfo& infoGlobal) override;
+
+  /// Bullet's rigid contacts (node and face) dropped for a value that is not finite, over the
+  /// solver's life.
+  long long droppedContacts() const { return m_droppedContacts; }
 
  private:
+  CollisionConfiguration& m_configuration;
+  long long m_droppedContacts = 0;
   std::unique_ptr<detail::SoftBodySolverImpl> m_impl;
 };
 
