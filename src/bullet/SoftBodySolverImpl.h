@@ -115,6 +115,8 @@ class SoftBodySolverImpl {
     const btSoftBody* softBody = nullptr;
     Index nodeCount = kInvalidIndex;
     Index faceCount = kInvalidIndex;
+    Index linkCount = kInvalidIndex;
+    const void* linkArray = nullptr;
     // Where the body's node and face arrays were: a body deleted and another made at the same
     // address, or arrays grown in place of others, are not taken for the same topology.
     const void* nodes = nullptr;
@@ -125,6 +127,9 @@ class SoftBodySolverImpl {
     // Every edge of the faces is shared by exactly two of them: the surface bounds a volume, and
     // whether a tool piece lies inside it has an answer (the winding number).
     bool closed = false;
+    // Every edge of the faces is a link that is not a bending one: the solve's preparation of the
+    // links, which reads every link's length at the step's start anyway, then bounds the faces.
+    bool edgesAreLinks = false;
     Real faceReach = 0;
     Real measuredReach = -1;  // at the last exact measure; negative: never measured
     int stepSeen = -1;
@@ -205,7 +210,10 @@ class SoftBodySolverImpl {
   NodeSurvey beginSurvey(SoftBodyCache& cache, int step);
   // pinned: the node is pinned and the step lists pinned nodes (m_dynamicToolsActive).
   void surveyNode(NodeSurvey& survey, SoftBodyCache& cache, int i, const btVector3& x, const btVector3& q, bool pinned);
-  void finishSurvey(const NodeSurvey& survey, SoftBodyCache& cache, const btSoftBody& softBody);
+  // longestStartEdge: the longest link that is not a bending one at the step's start (m), or
+  // negative when the caller did not measure it.
+  void finishSurvey(const NodeSurvey& survey, SoftBodyCache& cache, const btSoftBody& softBody,
+                    Real longestStartEdge = -1);
   // The soft body's pinned nodes stop the dynamic tool that carries the piece short of them.
   void stopAtPinnedNodes(DynamicBody& tool, const ToolModel& piece, const Pose& pieceEnd, Real inverseStep,
                          const SoftBodyCache& cache, const btSoftBody& softBody, Index& nonFiniteWrites);
