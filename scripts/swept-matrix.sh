@@ -1,16 +1,32 @@
 #!/bin/sh
 # Regenerates docs/swept-matrix.md: the baseline scene for plate and needle, speeds 0.1 to 50 m/s,
 # steps 1/30 to 1/1000 s, stock Bullet (A, B, E), the paper's discrete algorithm and ThinTool's
-# swept default, with a summary on top. Needs a build in ./build (see README).
+# swept default, with a summary on top; then the same matrix in btSoftMultiBodyDynamicsWorld and
+# btDeformableMultiBodyDynamicsWorld. Needs a build in ./build (see README).
 set -eu
 cd "$(dirname "$0")/.."
 binary=build/examples/plate_into_ball/plate_into_ball
 out=docs/swept-matrix.md
 mkdir -p docs
 tmp=$(mktemp -d)
-for tool in plate needle; do
-  "$binary" --tool "$tool" --speeds 0.1,1,5,20,50 --steps 30,60,240,1000 > "$tmp/$tool.txt"
+worlds="soft-rigid soft-multibody deformable"
+for world in $worlds; do
+  for tool in plate needle; do
+    "$binary" --world "$world" --tool "$tool" --speeds 0.1,1,5,20,50 --steps 30,60,240,1000 > "$tmp/$world-$tool.txt"
+  done
 done
+# The summary of one world's runs: failing cases and mean times per tool and algorithm.
+summary() {
+  echo "| tool | algorithm | failing cases (of 20) | mean us/step | mean tool us/step |"
+  echo "|---|---|---|---|---|"
+  for tool in plate needle; do
+    grep '^| [sT]' "$tmp/$1-$tool.txt" | awk -F'|' -v tool="$tool" '
+      { name=$2; gsub(/^ +| +$/, "", name); if (!(name in n)) names[++count]=name; n[name]++; t[name]+=$9;
+        if ($10 ~ /[0-9]/) u[name]+=$10; if ($5+0 > 0 || $6+0 > 0 || $7 ~ /YES/ || $8+0 > 0.1) f[name]++ }
+      END { for (k = 1; k <= count; ++k) { a=names[k];
+              printf("| %s | %s | %d | %.1f | %s |\n", tool, a, f[a]+0, t[a]/n[a], (u[a] > 0 ? sprintf("%.1f", u[a]/n[a]) : "-")) } }'
+  done
+}
 {
   echo "# Tunnelling against speed and step: the full matrix"
   echo
@@ -20,20 +36,24 @@ done
   echo "centre was inside the ball after a step, or a node or face lay deeper than 0.1 mm inside the tool."
   echo "Definitions as in docs/results/main-job.md, from the same runs as the tables below."
   echo
-  echo "| tool | algorithm | failing cases (of 20) | mean us/step | mean tool us/step |"
-  echo "|---|---|---|---|---|"
-  for tool in plate needle; do
-    grep '^| [sT]' "$tmp/$tool.txt" | awk -F'|' -v tool="$tool" '
-      { name=$2; gsub(/^ +| +$/, "", name); if (!(name in n)) names[++count]=name; n[name]++; t[name]+=$9;
-        if ($10 ~ /[0-9]/) u[name]+=$10; if ($5+0 > 0 || $6+0 > 0 || $7 ~ /YES/ || $8+0 > 0.1) f[name]++ }
-      END { for (k = 1; k <= count; ++k) { a=names[k];
-              printf("| %s | %s | %d | %.1f | %s |\n", tool, a, f[a]+0, t[a]/n[a], (u[a] > 0 ? sprintf("%.1f", u[a]/n[a]) : "-")) } }'
-  done
-  for tool in plate needle; do
-    echo
-    echo "## $tool"
-    echo
-    grep '^|' "$tmp/$tool.txt"
+  summary soft-rigid
+  echo
+  echo "In btSoftMultiBodyDynamicsWorld (PyBullet's soft world), the same scene:"
+  echo
+  summary soft-multibody
+  echo
+  echo "In btDeformableMultiBodyDynamicsWorld, the ball a mass-spring body without pressure"
+  echo "(scenes::WorldKind::Deformable), Bullet's pairs and ThinTool's last word after its implicit solve"
+  echo "(the paper's algorithm has no last word, so it is stock's contact there):"
+  echo
+  summary deformable
+  for world in $worlds; do
+    for tool in plate needle; do
+      echo
+      echo "## $tool, $world"
+      echo
+      grep '^|' "$tmp/$world-$tool.txt"
+    done
   done
 } > "$out"
 rm -r "$tmp"

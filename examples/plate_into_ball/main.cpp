@@ -6,6 +6,7 @@
 // It prints one table whose accuracy columns and time column come from the same runs.
 //
 //   plate_into_ball [--tool plate|needle] [--speeds 0.1,1,5,20] [--steps 60,1000]
+//                   [--world soft-rigid|soft-multibody|deformable]
 //   plate_into_ball [--tool plate|needle] --view                       (the viewer, where built)
 //   plate_into_ball [--tool plate|needle] [--stock] --screenshot FILE.png [--after N]
 
@@ -37,10 +38,13 @@ std::vector<double> parseList(const char* text) {
 
 int usage() {
   std::fprintf(stderr, "usage: plate_into_ball [--tool plate|needle] [--speeds 0.1,1,5,20] [--steps 60,1000]\n"
+                       "                       [--world soft-rigid|soft-multibody|deformable]\n"
                        "       plate_into_ball [--tool plate|needle] [--stock] --view | --screenshot FILE.png [--after N]\n"
                        "  --steps lists time steps as steps per second; --view and --screenshot need the viewer\n"
                        "  (built where GLFW, OpenGL, Dear ImGui and stb are installed); --after: steps before the\n"
-                       "  screenshot (60); --stock: stock Bullet (E) instead of ThinTool\n");
+                       "  screenshot (60); --stock: stock Bullet (E) instead of ThinTool; --world: the Bullet world\n"
+                       "  (btSoftRigidDynamicsWorld by default; in the deformable world the ball is a mass-spring body\n"
+                       "  without pressure)\n");
   return 2;
 }
 
@@ -50,6 +54,7 @@ int main(int argc, char** argv) {
   ToolShape shape = ToolShape::Plate;
   std::vector<double> speeds{0.1, 1, 5, 20};
   std::vector<double> rates{60, 1000};
+  WorldKind world = WorldKind::SoftRigid;
   bool view = false;
   bool stock = false;
   std::string screenshot;
@@ -64,6 +69,17 @@ int main(int argc, char** argv) {
       speeds = parseList(argv[++i]);
     } else if (std::strcmp(argv[i], "--steps") == 0 && hasValue) {
       rates = parseList(argv[++i]);
+    } else if (std::strcmp(argv[i], "--world") == 0 && hasValue) {
+      const std::string name = argv[++i];
+      if (name == "soft-rigid") {
+        world = WorldKind::SoftRigid;
+      } else if (name == "soft-multibody") {
+        world = WorldKind::SoftMultiBody;
+      } else if (name == "deformable") {
+        world = WorldKind::Deformable;
+      } else {
+        return usage();
+      }
     } else if (std::strcmp(argv[i], "--view") == 0) {
       view = true;
     } else if (std::strcmp(argv[i], "--stock") == 0) {
@@ -91,7 +107,11 @@ int main(int argc, char** argv) {
 #endif
   }
 
-  std::printf("%s into a 128-face soft ball: stock Bullet 3.24 against ThinTool\n\n", toolShapeName(shape));
+  const char* worldName = world == WorldKind::SoftMultiBody ? "btSoftMultiBodyDynamicsWorld"
+                          : world == WorldKind::Deformable  ? "btDeformableMultiBodyDynamicsWorld"
+                                                             : "btSoftRigidDynamicsWorld";
+  std::printf("%s into a 128-face soft ball in %s: stock Bullet 3.24 against ThinTool\n\n", toolShapeName(shape),
+              worldName);
   std::printf("| algorithm | dt | speed (m/s) | crossed | pierced steps | tool inside | max pen. (mm) | us/step "
               "| tool us/step |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|\n");
@@ -103,6 +123,7 @@ int main(int argc, char** argv) {
         PressSettings settings;
         settings.scene.algorithm = algorithm;
         settings.scene.tool = shape;
+        settings.scene.world = world;
         settings.scene.timeStep = 1 / rate;
         settings.speed = speed;
         const PressResult r = runPress(settings);
