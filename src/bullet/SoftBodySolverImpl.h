@@ -258,7 +258,7 @@ class SoftBodySolverImpl {
   void findBackings(const btSoftBody& softBody);
 
   // How far the face reach may grow before it is measured again, as a multiple of the last
-  // measure: the measure visits every face, and the gather's work grows with the reach.
+  // measure (or bound): the measure visits every face, and the gather's work grows with the reach.
   static constexpr Real kReachGrowth = 2;
   static constexpr int kMostPasses = 4;
   // A bound on one step's work only: the patch grows until no moved node has a face outside it,
