@@ -304,6 +304,42 @@ TEST(Configuration, DeformableWorldPairsGoToBulletAndAreCounted) {
   }
 }
 
+// A unit ball of 128 faces dropped on a ground box in Bullet's deformable world, the box a tool of
+// the configuration when asked.
+struct DeformableBallOnGround {
+  btCollisionDispatcher dispatcher;
+  btDbvtBroadphase broadphase;
+  scenes::SoftWorldOfKind world;
+  btBoxShape groundShape{btVector3(2, 0.1, 2)};
+  btDefaultMotionState motion{btTransform(btQuaternion::getIdentity(), btVector3(0, -0.1, 0))};
+  btRigidBody ground{btRigidBody::btRigidBodyConstructionInfo(0, &motion, &groundShape)};
+  btSoftBody* ball = nullptr;
+  Tool* tool = nullptr;
+
+  DeformableBallOnGround(btCollisionConfiguration& configuration, btSoftBodySolver& softSolver, bool groundIsTool)
+      : dispatcher(&configuration),
+        world(scenes::WorldKind::Deformable, dispatcher, broadphase, configuration, softSolver) {
+    world.world().setGravity(btVector3(0, -10, 0));
+    ball = btSoftBodyHelpers::CreateEllipsoid(world.worldInfo(), btVector3(0, 1.2, 0), btVector3(1, 1, 1), 63);
+    ball->setTotalMass(1);
+    world.addSoftBody(ball);
+    world.world().addRigidBody(&ground);
+    if (groundIsTool) tool = &addTool(world.world(), ground);
+  }
+  ~DeformableBallOnGround() {
+    if (tool != nullptr) removeTool(world.world(), ground);
+    world.world().removeRigidBody(&ground);
+    world.removeSoftBody(ball);
+    delete ball;
+  }
+  DeformableBallOnGround(const DeformableBallOnGround&) = delete;
+  DeformableBallOnGround& operator=(const DeformableBallOnGround&) = delete;
+
+  void step(int steps) {
+    for (int i = 0; i < steps; ++i) world.world().stepSimulation(btScalar(1) / 60, 1, btScalar(1) / 60);
+  }
+};
+
 // ThinTool's deformable solver changes nothing without a tool: a ball dropped on a box in the
 // deformable world steps bit for bit as with Bullet's own solver and configuration. With the box
 // registered as a tool, its last word runs after the solve while the pair stays Bullet's.
@@ -319,32 +355,16 @@ TEST(Configuration, TheDeformableSolverWithoutToolsStepsAsBulletsAndSpeaksLastWi
       configuration = std::make_unique<btSoftBodyRigidBodyCollisionConfiguration>();
       softSolver = scenes::softSolverFor(scenes::WorldKind::Deformable, nullptr);
     }
-    btCollisionDispatcher dispatcher(configuration.get());
-    btDbvtBroadphase broadphase;
-    scenes::SoftWorldOfKind world(scenes::WorldKind::Deformable, dispatcher, broadphase, *configuration, *softSolver);
-    world.world().setGravity(btVector3(0, -10, 0));
-    btSoftBody* ball = btSoftBodyHelpers::CreateEllipsoid(world.worldInfo(), btVector3(0, 1.2, 0),
-                                                          btVector3(1, 1, 1), 63);
-    ball->setTotalMass(1);
-    world.addSoftBody(ball);
-    btBoxShape groundShape(btVector3(2, 0.1, 2));
-    btDefaultMotionState motion(btTransform(btQuaternion::getIdentity(), btVector3(0, -0.1, 0)));
-    btRigidBody ground(btRigidBody::btRigidBodyConstructionInfo(0, &motion, &groundShape));
-    world.world().addRigidBody(&ground);
-    Tool* tool = registerTool ? &addTool(world.world(), ground) : nullptr;
-    for (int i = 0; i < 90; ++i) world.world().stepSimulation(btScalar(1) / 60, 1, btScalar(1) / 60);
+    DeformableBallOnGround scene(*configuration, *softSolver, registerTool);
+    scene.step(90);
     std::vector<btVector3> nodes;
-    for (int i = 0; i < ball->m_nodes.size(); ++i) nodes.push_back(ball->m_nodes[i].m_x);
-    if (tool != nullptr) {
-      const ToolStepReport& report = tool->report();
+    for (int i = 0; i < scene.ball->m_nodes.size(); ++i) nodes.push_back(scene.ball->m_nodes[i].m_x);
+    if (scene.tool != nullptr) {
+      const ToolStepReport& report = scene.tool->report();
       EXPECT_TRUE(report.diagnostics.lastWord.ran);
       EXPECT_GT(report.diagnostics.stockPairs.deformableWorld, 0u);
       EXPECT_EQ(report.diagnostics.lastWord.violations(), 0u);
-      removeTool(world.world(), ground);
     }
-    world.world().removeRigidBody(&ground);
-    world.removeSoftBody(ball);
-    delete ball;
     return nodes;
   };
   const std::vector<btVector3> stock = drop(false, false);
@@ -365,40 +385,25 @@ TEST(Configuration, TheDeformableSolverWithoutToolsStepsAsBulletsAndSpeaksLastWi
 TEST(Configuration, TheDeformableSolverDropsContactsThatAreNotFinite) {
   CollisionConfiguration configuration;
   DeformableBodySolver solver(configuration);
-  btCollisionDispatcher dispatcher(&configuration);
-  btDbvtBroadphase broadphase;
-  scenes::SoftWorldOfKind world(scenes::WorldKind::Deformable, dispatcher, broadphase, configuration, solver);
-  world.world().setGravity(btVector3(0, -10, 0));
-  btSoftBody* ball = btSoftBodyHelpers::CreateEllipsoid(world.worldInfo(), btVector3(0, 1.2, 0),
-                                                        btVector3(1, 1, 1), 63);
-  ball->setTotalMass(1);
-  world.addSoftBody(ball);
-  btBoxShape groundShape(btVector3(2, 0.1, 2));
-  btDefaultMotionState motion(btTransform(btQuaternion::getIdentity(), btVector3(0, -0.1, 0)));
-  btRigidBody ground(btRigidBody::btRigidBodyConstructionInfo(0, &motion, &groundShape));
-  world.world().addRigidBody(&ground);
-  addTool(world.world(), ground);
-  for (int i = 0; i < 60; ++i) world.world().stepSimulation(btScalar(1) / 60, 1, btScalar(1) / 60);
+  DeformableBallOnGround scene(configuration, solver, true);
+  scene.step(60);
   EXPECT_EQ(solver.droppedContacts(), 0);
   // The ball rests on the ground: its last step's contacts are still there, and one of them, made
   // not finite, joins them.
-  ASSERT_GT(ball->m_faceRigidContacts.size(), 0);
-  const int finite = ball->m_faceRigidContacts.size();
-  btSoftBody::DeformableFaceRigidContact broken = ball->m_faceRigidContacts[0];
+  btSoftBody& ball = *scene.ball;
+  ASSERT_GT(ball.m_faceRigidContacts.size(), 0);
+  const int finite = ball.m_faceRigidContacts.size();
+  btSoftBody::DeformableFaceRigidContact broken = ball.m_faceRigidContacts[0];
   broken.m_bary.setX(std::numeric_limits<btScalar>::quiet_NaN());
   broken.m_weights = broken.m_bary;
-  ball->m_faceRigidContacts.push_back(broken);
-  solver.setConstraints(world.world().getSolverInfo());
+  ball.m_faceRigidContacts.push_back(broken);
+  solver.setConstraints(scene.world.world().getSolverInfo());
   EXPECT_EQ(solver.droppedContacts(), 1);
-  EXPECT_EQ(ball->m_faceRigidContacts.size(), finite);
-  for (int i = 0; i < 30; ++i) world.world().stepSimulation(btScalar(1) / 60, 1, btScalar(1) / 60);
-  for (int i = 0; i < ball->m_nodes.size(); ++i) {
-    EXPECT_TRUE(std::isfinite(ball->m_nodes[i].m_x.length2())) << "node " << i;
+  EXPECT_EQ(ball.m_faceRigidContacts.size(), finite);
+  scene.step(30);
+  for (int i = 0; i < ball.m_nodes.size(); ++i) {
+    EXPECT_TRUE(std::isfinite(ball.m_nodes[i].m_x.length2())) << "node " << i;
   }
-  removeTool(world.world(), ground);
-  world.world().removeRigidBody(&ground);
-  world.removeSoftBody(ball);
-  delete ball;
 }
 
 }  // namespace
