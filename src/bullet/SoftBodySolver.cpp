@@ -162,10 +162,9 @@ std::vector<std::pair<Index, Index>> sortedFaceEdges(const btSoftBody& softBody)
   return edges;
 }
 
-// Whether every edge of the body's faces is shared by exactly two faces. Run when the topology is
-// new to the solver or has changed, never in a step that only moves nodes.
-bool surfaceIsClosed(const btSoftBody& softBody) {
-  const std::vector<std::pair<Index, Index>> edges = sortedFaceEdges(softBody);
+// Whether every edge of the faces (sortedFaceEdges) is shared by exactly two faces. Run when the
+// topology is new to the solver or has changed, never in a step that only moves nodes.
+bool surfaceIsClosed(const std::vector<std::pair<Index, Index>>& edges) {
   if (edges.empty()) return false;
   for (std::size_t i = 0; i < edges.size(); i += 2) {
     const bool pair = i + 1 < edges.size() && edges[i] == edges[i + 1];
@@ -174,10 +173,9 @@ bool surfaceIsClosed(const btSoftBody& softBody) {
   return true;
 }
 
-// Whether every edge of the body's faces is also a link that is not a bending one. Run with
-// surfaceIsClosed.
-bool edgesAreLinks(const btSoftBody& softBody) {
-  const std::vector<std::pair<Index, Index>> edges = sortedFaceEdges(softBody);
+// Whether every edge of the body's faces (sortedFaceEdges) is also a link that is not a bending
+// one. Run with surfaceIsClosed.
+bool edgesAreLinks(const btSoftBody& softBody, const std::vector<std::pair<Index, Index>>& edges) {
   if (edges.empty()) return false;
   const btSoftBody::Node* first = &softBody.m_nodes[0];
   std::vector<std::pair<Index, Index>> links;
@@ -1137,7 +1135,9 @@ SoftBodySolverImpl::SoftBodyCache& SoftBodySolverImpl::topologyOf(const btSoftBo
     }
   }
   for (Index n = 0; n < nodeCount; ++n) cache.begin[n + 1] += cache.begin[n];
-  cache.closed = surfaceIsClosed(softBody);
+  const std::vector<std::pair<Index, Index>> edges = sortedFaceEdges(softBody);
+  cache.closed = surfaceIsClosed(edges);
+  cache.edgesAreLinks = edgesAreLinks(softBody, edges);
   cache.faces.resize(cache.begin[nodeCount]);
   cache.faceNodes.resize(faceCount);
   std::vector<Index> filled(cache.begin.begin(), cache.begin.end() - 1);
@@ -1149,7 +1149,6 @@ SoftBodySolverImpl::SoftBodyCache& SoftBodySolverImpl::topologyOf(const btSoftBo
       cache.faces[filled[node]++] = f;
     }
   }
-  cache.edgesAreLinks = edgesAreLinks(softBody);
   cache.isCandidate.assign(nodeCount, 0);
   cache.kineticShare.assign(nodeCount, 0);
   cache.momentumShare.assign(nodeCount, btVector3(0, 0, 0));
