@@ -18,11 +18,14 @@ cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAG
   -DTHINTOOL_WERROR=ON -DTHINTOOL_BULLET_DOUBLE=ON -DTHINTOOL_SANITIZE=address,undefined,float-cast-overflow \
   -DTHINTOOL_ASSERTS=ON -DTHINTOOL_BUILD_BENCHMARKS=OFF
 cmake --build build-sanitize --parallel 2
-ctest --test-dir build-sanitize --parallel 2 --output-on-failure --exclude-regex 'Install|Docs' --label-exclude generated
+# The stress cases at 1/10,000 s step the same code ten times as often as at 1/1000 s: under the
+# sanitizers they took 94 s of this stage's 232 s of tests, so they run in the float build only.
+ctest --test-dir build-sanitize --parallel 2 --output-on-failure --exclude-regex 'Install|Docs|dt110000s$' \
+  --label-exclude generated
 
 CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTHINTOOL_BUILD_FUZZERS=ON \
   -DTHINTOOL_BUILD_TESTS=OFF -DTHINTOOL_BUILD_EXAMPLES=OFF -DTHINTOOL_BUILD_BENCHMARKS=OFF
-cmake --build build-fuzz --parallel 2
+cmake --build build-fuzz --parallel 2 --target fuzz_json fuzz_tool_model fuzz_replay
 # A fixed seed and run count: the same inputs every time, so a CI run never fails by luck. Each
 # fuzzer uses one core: they run side by side, each with its own log, shown when it fails.
 fuzzing=""
