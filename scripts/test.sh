@@ -20,7 +20,7 @@ cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAG
 cmake --build build-sanitize --parallel 2
 # The stress cases at 1/10,000 s step the same code ten times as often as at 1/1000 s: under the
 # sanitizers they took 94 s of this stage's 232 s of tests, so they run in the float build only.
-ctest --test-dir build-sanitize --parallel 2 --output-on-failure --exclude-regex 'Install|Docs|dt110000s$' \
+ctest --test-dir build-sanitize --parallel 2 --output-on-failure --exclude-regex 'Install|Docs|dt110000s' \
   --label-exclude generated
 
 CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTHINTOOL_BUILD_FUZZERS=ON \
