@@ -755,13 +755,16 @@ void SoftBodySolverImpl::separateEverything() {
   // turns until a pass moves nothing, or a pass had a single piece near soft features. Pieces
   // still pushing faces into each other after the last pass leave them to the last resort, which
   // carries what meets a piece with it from the start of the step, where it met none.
+  // A carry of crossed faces moves their nodes with the piece, as far as the piece went: the faces
+  // they share with nodes left behind are looked at in another pass (generated seed 979).
   for (int pass = 0; pass < kMostPasses; ++pass) {
     m_piecesNear = 0;
+    m_carried = false;
     bool moved = false;
     for (Tool* tool : m_active) {
       moved = separate(*tool, Stage::Rounds) || moved;
     }
-    if (!moved || m_piecesNear <= 1) break;
+    if (!moved || (m_piecesNear <= 1 && !m_carried)) break;
     if (pass + 1 == kMostPasses) {
       for (Tool* tool : m_active) separate(*tool, Stage::LastResort);
       for (Tool* tool : m_active) separate(*tool, Stage::NodesLast);
@@ -1389,6 +1392,7 @@ void SoftBodySolverImpl::keepOutsideClosedBody(Tool& tool, const ToolModel& piec
     if (!endsInside()) return;
   }
   const SeparationCounts carried = carryCrossedFaces(piece, motion, tool.state().options.separation, m_patch);
+  m_carried = m_carried || carried.nodesMoved > 0;
   counts.nodesMoved += carried.nodesMoved;
   counts.nodesInside = carried.nodesInside;
   counts.facesPierced = carried.facesPierced;

@@ -271,6 +271,7 @@ class SoftBodySolverImpl {
   CollisionConfiguration& m_configuration;
   std::vector<Tool*> m_active;  // tools whose stage runs this step
   int m_piecesNear = 0;         // (piece, soft body) pairs with soft features near, this pass
+  bool m_carried = false;       // this pass carried crossed faces with a piece (keepOutsideClosedBody)
   SeparationPatch m_patch;
   std::vector<NearPiece> m_nearPieces;  // the pieces near the one being separated
   std::vector<Index> m_vertexOfNode;  // soft node -> patch vertex, kInvalidIndex when absent
