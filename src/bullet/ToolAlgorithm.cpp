@@ -120,9 +120,12 @@ Real applyResponse(PairState& state, btSoftBody& softBody, DynamicBody dynamicBo
     checkWrite(before, node.m_x, state.nonFiniteWrites);
     state.patch.positions[correction.vertex] += correction.displacement;
     if (dynamicBody && node.m_im > 0) {
-      // The velocity Bullet's solve would have given the node where it was predicted to be.
+      // The velocity Bullet's solve would have given the node where it was predicted to be. The
+      // move gives the node m·|d|/dt whatever the two were closing at (a node the solver left inside
+      // the skin, put back out, is the load of a resting contact: a lifted body's weight on the
+      // fingers), so the exchange counts the move's own speed as closing speed at least.
       applyNodeReaction(dynamicBody, node.m_x, displacement, node.m_im, inverseStep,
-                        (node.m_x - displacement - node.m_q) * inverseStep);
+                        (node.m_x - displacement - node.m_q) * inverseStep, displacement.length() * inverseStep);
     }
   }
   if (dynamicBody && !state.response.corrections.empty()) {
