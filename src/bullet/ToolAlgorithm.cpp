@@ -125,7 +125,7 @@ Real applyResponse(PairState& state, btSoftBody& softBody, DynamicBody dynamicBo
       // the skin, put back out, is the load of a resting contact: a lifted body's weight on the
       // fingers), so the exchange counts the move's own speed as closing speed at least.
       applyNodeReaction(dynamicBody, node.m_x, displacement, node.m_im, inverseStep,
-                        (node.m_x - displacement - node.m_q) * inverseStep, displacement.length() * inverseStep);
+                        (node.m_x - displacement - node.m_q) * inverseStep, /*closingAtMoveSpeed=*/true);
     }
   }
   if (dynamicBody && !state.response.corrections.empty()) {

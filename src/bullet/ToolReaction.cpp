@@ -22,12 +22,14 @@ constexpr Real kMostTurnPerSample = Real(5) * kPi / 180;
 constexpr int kMostSamples = 64;
 
 // The impulse (N s) a node of inverse mass inverseNodeMass exchanges with a body of inverse
-// effective mass inverseEffectiveMass at the point, the two closing at closing (m/s), or at
-// leastClosing if faster, along a move of distance (m) in a step of 1/inverseStep: the inelastic
-// exchange, but no more than the node's change of momentum. 0 when nothing is exchanged.
+// effective mass inverseEffectiveMass at the point, the two closing at closing (m/s), or at the
+// move's own speed if closingAtMoveSpeed and that is faster, along a move of distance (m) in a step
+// of 1/inverseStep: the inelastic exchange, but no more than the node's change of momentum. 0 when
+// nothing is exchanged.
 btScalar exchangedImpulse(btScalar distance, btScalar inverseNodeMass, btScalar inverseEffectiveMass,
-                          btScalar closing, btScalar inverseStep, btScalar leastClosing) {
-  btScalar impulse = std::max({btScalar(0), closing, leastClosing}) / (inverseNodeMass + inverseEffectiveMass);
+                          btScalar closing, btScalar inverseStep, bool closingAtMoveSpeed) {
+  if (closingAtMoveSpeed) closing = std::max(closing, distance * inverseStep);
+  btScalar impulse = std::max(btScalar(0), closing) / (inverseNodeMass + inverseEffectiveMass);
   if (inverseNodeMass > 0) {
     impulse = std::min(impulse, distance * inverseStep / inverseNodeMass);
   }
@@ -38,7 +40,7 @@ btScalar exchangedImpulse(btScalar distance, btScalar inverseNodeMass, btScalar 
 
 btScalar applyNodeReaction(btRigidBody& tool, const btVector3& nodePosition, const btVector3& displacement,
                            btScalar inverseNodeMass, btScalar inverseStep, const btVector3& nodeVelocity,
-                           AppliedImpulse* applied, btScalar leastClosing) {
+                           AppliedImpulse* applied, bool closingAtMoveSpeed) {
   const btScalar distance = displacement.length();
   if (!(distance > 0) || !std::isfinite(distance) || !(inverseNodeMass >= 0)) {
     return 0;
@@ -54,7 +56,7 @@ btScalar applyNodeReaction(btRigidBody& tool, const btVector3& nodePosition, con
   }
   const btScalar closing = (tool.getVelocityInLocalPoint(arm) - nodeVelocity).dot(direction);
   const btScalar impulse =
-      exchangedImpulse(distance, inverseNodeMass, inverseEffectiveMass, closing, inverseStep, leastClosing);
+      exchangedImpulse(distance, inverseNodeMass, inverseEffectiveMass, closing, inverseStep, closingAtMoveSpeed);
   if (impulse == 0) {
     return 0;
   }
@@ -133,10 +135,10 @@ btScalar stopShortOfPinnedNode(btRigidBody& tool, const ToolModel& piece, const 
 
 btScalar applyNodeReaction(DynamicBody& tool, const btVector3& nodePosition, const btVector3& displacement,
                            btScalar inverseNodeMass, btScalar inverseStep, const btVector3& nodeVelocity,
-                           btScalar leastClosing) {
+                           bool closingAtMoveSpeed) {
   if (btRigidBody* rigid = tool.rigid()) {
     return applyNodeReaction(*rigid, nodePosition, displacement, inverseNodeMass, inverseStep, nodeVelocity,
-                             tool.applied(), leastClosing);
+                             tool.applied(), closingAtMoveSpeed);
   }
   const btScalar distance = displacement.length();
   if (!(distance > 0) || !std::isfinite(distance) || !(inverseNodeMass >= 0)) {
@@ -149,7 +151,7 @@ btScalar applyNodeReaction(DynamicBody& tool, const btVector3& nodePosition, con
   }
   const btScalar closing = row.speed - nodeVelocity.dot(direction);
   const btScalar impulse =
-      exchangedImpulse(distance, inverseNodeMass, row.inverseMass, closing, inverseStep, leastClosing);
+      exchangedImpulse(distance, inverseNodeMass, row.inverseMass, closing, inverseStep, closingAtMoveSpeed);
   if (impulse == 0) {
     return 0;
   }

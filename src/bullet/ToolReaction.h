@@ -25,18 +25,19 @@ namespace thintool::detail {
 /// cannot give way) that moved at nodeVelocity (m/s, world) before ThinTool moved it by
 /// displacement (m) to nodePosition in a step of inverseStep (1/s): the node's change of momentum,
 /// displacement × inverseStep / inverseNodeMass, but no more than the inelastic exchange along the
-/// move, at their closing speed there or leastClosing (m/s), whichever is larger. Returns the
-/// impulse applied (N s, along -displacement).
+/// move, at their closing speed there or, if closingAtMoveSpeed, the move's own speed
+/// (displacement × inverseStep), whichever is larger. Returns the impulse applied (N s, along
+/// -displacement).
 /// applied, when not null, sums the impulse.
 btScalar applyNodeReaction(btRigidBody& tool, const btVector3& nodePosition, const btVector3& displacement,
                            btScalar inverseNodeMass, btScalar inverseStep, const btVector3& nodeVelocity,
-                           AppliedImpulse* applied = nullptr, btScalar leastClosing = 0);
+                           AppliedImpulse* applied = nullptr, bool closingAtMoveSpeed = false);
 
 /// applyNodeReaction on either kind of dynamic body: a rigid body as above; a multibody link by the
 /// same rule, with the link's speed and effective mass along the move from its Jacobian.
 btScalar applyNodeReaction(DynamicBody& tool, const btVector3& nodePosition, const btVector3& displacement,
                            btScalar inverseNodeMass, btScalar inverseStep, const btVector3& nodeVelocity,
-                           btScalar leastClosing = 0);
+                           bool closingAtMoveSpeed = false);
 
 /// A node that cannot give way (inverse mass 0) at node (m, world) stops tool, whose piece is at
 /// pieceNow, short of it over the next step of 1/inverseStep (s): a speculative contact along the
