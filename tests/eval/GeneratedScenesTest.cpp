@@ -97,6 +97,11 @@ void expectNoFailures(const std::vector<std::uint64_t>& seeds, const RunOptions&
   std::printf("%zu seeds: %d failed, %d open seeds still failing\n", seeds.size(), failed, stillOpen);
 }
 
+// The blocks below run seeds 1 to kLastBlockSeed, those from kFirstDeformableSeed on in the
+// deformable world.
+constexpr std::uint64_t kFirstDeformableSeed = 289;
+constexpr std::uint64_t kLastBlockSeed = 300;
+
 std::vector<std::uint64_t> block(std::uint64_t first, std::uint64_t last) {
   std::vector<std::uint64_t> seeds;
   for (std::uint64_t s = first; s <= last; ++s) seeds.push_back(s);
@@ -116,21 +121,21 @@ TEST(GeneratedScenes, Seeds251To288) { expectNoFailures(block(251, 288)); }
 TEST(GeneratedScenes, Seeds289To300InTheDeformableWorld) {
   RunOptions deformable;
   deformable.world = scenes::WorldKind::Deformable;
-  expectNoFailures(block(289, 300), deformable);
+  expectNoFailures(block(kFirstDeformableSeed, kLastBlockSeed), deformable);
 }
 
-// The open seeds that the blocks above do not run: from beyond seed 300 in the classic world, and
-// outside 289 to 300 in the deformable one.
+// The open seeds that the blocks above do not run: from beyond them in the classic world, and
+// outside their deformable block in the deformable one.
 TEST(GeneratedScenes, OpenSeedsBeyondTheBlocks) {
   std::vector<std::uint64_t> classic;
   for (std::uint64_t seed : openSeeds({})) {
-    if (seed > 300) classic.push_back(seed);
+    if (seed > kLastBlockSeed) classic.push_back(seed);
   }
   RunOptions deformable;
   deformable.world = scenes::WorldKind::Deformable;
   std::vector<std::uint64_t> inTheDeformableWorld;
   for (std::uint64_t seed : openSeeds(deformable)) {
-    if (seed < 289 || seed > 300) inTheDeformableWorld.push_back(seed);
+    if (seed < kFirstDeformableSeed || seed > kLastBlockSeed) inTheDeformableWorld.push_back(seed);
   }
   expectNoFailures(classic);
   expectNoFailures(inTheDeformableWorld, deformable);
