@@ -261,6 +261,8 @@ bool SoftBodySolverImpl::lastWordReaches(const btSoftBody& body) const {
 
 bool SoftBodySolverImpl::collectHolds(btSoftBody& body) {
   m_held.clear();
+  m_holdContacts.clear();
+  m_holdsLast = false;
   m_sharedHolds.clear();
   m_reachingHolds.clear();
   const int nodeCount = body.m_nodes.size();
@@ -284,6 +286,8 @@ bool SoftBodySolverImpl::collectHolds(btSoftBody& body) {
         const btSoftBody::RContact& contact = body.m_rcontacts[state.firstHold + k];
         // Contacts of an earlier step, since replaced: not this pair's holds.
         if (contact.m_cti.m_colObj != state.holdBodies[static_cast<std::size_t>(k)].get()) break;
+        m_holdContacts.push_back(state.firstHold + k);
+        m_holdsLast = m_holdsLast || state.holdsLast;
         // A hold with friction keeps a grasped node with the jaw wherever it is: never limited.
         if (planeReach.has_value() && contact.m_c3 > 0) {
           m_reachingHolds.push_back(
@@ -356,6 +360,30 @@ void SoftBodySolverImpl::replaySharedHolds(btSoftBody& body, double inverseStepS
     held.replayed -= move;
     shared.pushed -= move;
     addHoldForce(shared.tool->state(), node, move, inverseStepSquared);
+  }
+}
+
+void SoftBodySolverImpl::solveHoldsLast(btSoftBody& body) {
+  // PSolve_RContacts's arithmetic at full stiffness, over the holds alone: a pass of Bullet's
+  // whole contact stage after the links re-solved the body's other contacts too, and a pressure
+  // body shaking on the ground by itself then shook more than twice as fast (generated seeds 1193,
+  // 2148, 3220, 4092, 4450, 5044, 7343, 9903 with friction).
+  const btScalar dt = body.m_sst.sdt;
+  const btScalar margin = body.getCollisionShape()->getMargin();
+  for (const int c : m_holdContacts) {
+    const btSoftBody::RContact& contact = body.m_rcontacts[c];
+    // A hold's body is a btRigidBody of ThinTool's own (PairState::holdBodies).
+    auto& holdBody = *static_cast<btRigidBody*>(const_cast<btCollisionObject*>(contact.m_cti.m_colObj));
+    btSoftBody::Node& node = *contact.m_node;
+    const btVector3 relative = (node.m_x - node.m_q) - holdBody.getVelocityInLocalPoint(contact.m_c1) * dt;
+    const btVector3& normal = contact.m_cti.m_normal;
+    const btScalar approach = relative.dot(normal);
+    if (approach > SIMD_EPSILON) continue;
+    const btScalar depth = btMin(node.m_x.dot(normal) + contact.m_cti.m_offset, margin);
+    const btVector3 tangential = relative - normal * approach;
+    const btVector3 impulse = contact.m_c0 * (relative - tangential * contact.m_c3 + normal * (depth * contact.m_c4));
+    node.m_x -= impulse * contact.m_c2;
+    holdBody.applyImpulse(impulse, contact.m_c1);
   }
 }
 
@@ -471,25 +499,32 @@ void SoftBodySolverImpl::solveInStages(btSoftBody& body, btScalar longestMove, b
     // A hold moves its node by -impulse·m⁻¹·dt and gives the tool's stand-in body +impulse: the
     // force on the tool over the step is Σ m·(before - after)/dt² over the contact stages.
     const double inverseStepSquared = double(body.m_sst.isdt) * double(body.m_sst.isdt);
+    // Each contact stage measured: Bullet's own (all of the body's contacts), and where the holds
+    // need the last say, the holds alone after the links (solveHoldsLast).
+    const auto measuredContactStage = [&](const auto& solve) {
+      for (HeldNode& held : m_held) held.before = body.m_nodes[held.node].m_x;
+      limitHoldReach(body);
+      solve();
+      for (HeldNode& held : m_held) {
+        const btSoftBody::Node& node = body.m_nodes[held.node];
+        if (held.severalTools || held.bulletContact) continue;
+        addHoldForce(held.tool->state(), node, held.before - node.m_x, inverseStepSquared);
+        held.pushed += node.m_x - held.before;
+      }
+      if (!m_sharedHolds.empty()) replaySharedHolds(body, inverseStepSquared);
+      applyHoldFriction(body, inverseStepSquared);
+    };
     for (int iteration = 0; iteration < config.piterations; ++iteration) {
       const btScalar fraction = iteration / btScalar(config.piterations);
       for (int stage = 0; stage < config.m_psequence.size(); ++stage) {
-        const bool contacts = config.m_psequence[stage] == btSoftBody::ePSolver::RContacts;
-        if (contacts) {
-          for (HeldNode& held : m_held) held.before = body.m_nodes[held.node].m_x;
-          limitHoldReach(body);
+        const btSoftBody::psolver_t solver = btSoftBody::getSolver(config.m_psequence[stage]);
+        if (config.m_psequence[stage] == btSoftBody::ePSolver::RContacts) {
+          measuredContactStage([&] { solver(&body, 1, fraction); });
+        } else {
+          solver(&body, 1, fraction);
         }
-        btSoftBody::getSolver(config.m_psequence[stage])(&body, 1, fraction);
-        if (!contacts) continue;
-        for (HeldNode& held : m_held) {
-          const btSoftBody::Node& node = body.m_nodes[held.node];
-          if (held.severalTools || held.bulletContact) continue;
-          addHoldForce(held.tool->state(), node, held.before - node.m_x, inverseStepSquared);
-          held.pushed += node.m_x - held.before;
-        }
-        if (!m_sharedHolds.empty()) replaySharedHolds(body, inverseStepSquared);
-        applyHoldFriction(body, inverseStepSquared);
       }
+      if (m_holdsLast) measuredContactStage([&] { solveHoldsLast(body); });
     }
     reactToHolds(body);
     const btScalar velocityFactor = body.m_sst.isdt * (1 - config.kDP);

@@ -316,6 +316,13 @@ class SoftBodySolverImpl {
     btVector3 pushed{0, 0, 0};  // this tool's hold's moves of the node over the solve
   };
   std::vector<HeldNode> m_held;
+  // This body's holds among its contacts (m_rcontacts indices), and whether one of their pairs
+  // asks for the holds' last say in each position iteration (PairState::holdsLast).
+  std::vector<int> m_holdContacts;
+  bool m_holdsLast = false;
+  // After each position iteration's stages: the holds alone, once more, as Bullet's contact stage
+  // solves them.
+  void solveHoldsLast(btSoftBody& body);
   std::vector<SharedHold> m_sharedHolds;
   // A hold whose tool limits how far along its plane it reaches (BulletSettings::holdPlaneReach):
   // before each contact stage its contact's normal is the plane's, or zero, which Bullet's contact

@@ -78,16 +78,19 @@ void fillHoldContact(btSoftBody::RContact& contact, btSoftBody::Node& node, cons
 }
 
 // Appends a contact pass after the last link pass of the soft body's position solver, once. Bullet
-// runs contacts before links in each iteration, so the links drag the held nodes: those friction
-// holds to a grasping jaw, and those under a dynamic tool that the force model carries, which then
-// jitters on them (the force test's tool at rest moved at 0.4 m/s in Bullet's float64 build
-// without the pass). The extra pass gives the holds each iteration's last say. Penetration needs
-// no such pass: the last word, after the solver, answers for it. The pass also re-solves that soft
-// body's other contacts (with the ground, say) once more per iteration. A dynamic tool that takes
-// the moved nodes' reactions does not get it: the holds having the last say against stiff links
-// shook the bodies such tools touched, nodes at 82 to 541 m/s against a tool at 1 to 12 m/s
-// (generated seeds 549, 1841, 2958, 4363, 5118, 7091), and a tool at rest on a pinned node needs
-// only its stop to count Bullet's gyroscopic term (ToolReaction.cpp).
+// runs contacts before links in each iteration, so the links drag the held nodes: those under a
+// dynamic tool that the force model carries, which then jitters on them (the force test's tool at
+// rest moved at 0.4 m/s in Bullet's float64 build without the pass), and with another soft-body
+// solver than ThinTool's, those friction holds to a grasping jaw (ThinTool's solver gives friction's
+// holds alone their last say: SoftBodySolverImpl::solveHoldsLast). The extra pass gives the holds
+// each iteration's last say. Penetration needs no such pass: the last word, after the solver,
+// answers for it. The pass also re-solves that soft body's other contacts (with the ground, say)
+// once more per iteration, which steadies the force on a tool pressing a body onto the ground (the
+// Falcon demo's held plate: FalconDemoTest). A dynamic tool that takes the moved nodes' reactions
+// does not get it: the holds having the last say against stiff links shook the bodies such tools
+// touched, nodes at 82 to 541 m/s against a tool at 1 to 12 m/s (generated seeds 549, 1841, 2958,
+// 4363, 5118, 7091), and a tool at rest on a pinned node needs only its stop to count Bullet's
+// gyroscopic term (ToolReaction.cpp).
 void makeContactsLast(btSoftBody& softBody) {
   auto& sequence = softBody.m_cfg.m_psequence;
   bool linksSeen = false;
@@ -453,12 +456,21 @@ void ToolAlgorithm::write(PieceStep& step) {
   if (options.response.kind == ResponseKind::Constraint && options.bullet.holdInSolver) {
     computeHolds(step.context(), state.patch, step.swept, state.response,
                  state.holds);
-    // Only once the response has moved a node: the pass also changes how the body's other
-    // contacts are solved (a pressure body on the ground shook at twice stock's speed), which a
-    // tool merely near the body must not do.
-    if (!state.response.corrections.empty() &&
-        (options.response.friction.enabled || (dynamicBody && forceReacts))) {
-      makeContactsLast(step.softBody);
+    // The holds' last say in each position iteration. Under a dynamic tool that the force model
+    // carries, Bullet's whole contact stage once more after the links: the body's other contacts
+    // (the ground it is pressed onto) then hold too, and the force the tool feels stays steady.
+    // For friction alone, thintool::SoftBodySolver gives it to the holds alone (its solve has begun
+    // the step when the tool's step length is known). The whole stage's other contacts are only
+    // appended once the response has moved a node: a pressure body on the ground shook at twice
+    // stock's speed with it while a tool was merely near.
+    if (dynamicBody && forceReacts) {
+      if (!state.response.corrections.empty()) makeContactsLast(step.softBody);
+    } else if (options.response.friction.enabled) {
+      if (m_tool.state().stepLength > 0) {
+        state.holdsLast = true;
+      } else if (!state.response.corrections.empty()) {
+        makeContactsLast(step.softBody);
+      }
     }
   }
   const Real moved =

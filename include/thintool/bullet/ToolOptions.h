@@ -82,10 +82,12 @@ struct BulletSettings {
   /// other node near the tool behind the tool face it is in front of (computeHolds). Without them
   /// the links and the pressure of a squashed body pull nodes back into the tool within the step.
   /// With friction, a node that sticks is held to the tool's surface motion (its hold is not
-  /// frictionless), and the soft bodies the tool touches get a contact pass after the links in each
-  /// of their position iterations (btSoftBody::m_cfg.m_psequence), so that the links of a grasped
-  /// body do not drag the held nodes along the jaws; so do those of a dynamic tool that the force
-  /// model carries (force.applyToDynamicTool).
+  /// frictionless), and its holds are solved once more after the links in each position iteration
+  /// of thintool::SoftBodySolver's solve, so that the links of a grasped body do not drag the held
+  /// nodes along the jaws. The soft bodies that a dynamic tool the force model carries
+  /// (force.applyToDynamicTool) touches, and with another soft-body solver those a tool with
+  /// friction touches, get a whole contact pass after the links instead, their other contacts
+  /// included (btSoftBody::m_cfg.m_psequence).
   bool holdInSolver = true;
   /// How far along its plane a hold without friction reaches, in multiples of the pair's skin
   /// beyond the skin (>= 0): it acts on its node only while the node, put on the hold's plane,
