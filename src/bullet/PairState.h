@@ -78,8 +78,8 @@ struct PairState {
   /// referring to holdBodies[k] (the soft solver checks that before it reads them).
   int firstHold = 0;
   int holdCount = 0;
-  /// The holds get a contact stage of their own after the links in each position iteration of
-  /// thintool::SoftBodySolver's solve (with friction, or a dynamic tool that the force model carries).
+  /// With friction, under thintool::SoftBodySolver: the soft body's holds get a contact stage of
+  /// their own after the links in each position iteration of its solve (solveHoldsLast).
   bool holdsLast = false;
   /// With friction, for a dynamic tool: the tool surface's displacement over the step at each
   /// hold's node (world), and the pair's coefficients, for the soft solver's friction at the holds.
