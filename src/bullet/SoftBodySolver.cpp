@@ -337,53 +337,50 @@ bool SoftBodySolverImpl::collectHolds(btSoftBody& body) {
   return true;
 }
 
+namespace {
+
+// A hold as PSolve_RContacts solves it, at full stiffness, for its node at position: the impulse,
+// zero while the node leaves the plane. The hold's body has zero inverse mass and no spin, its
+// velocity aimed at the plane (fillHoldContact in ToolAlgorithm.cpp), so the impulse moves the
+// node alone, by -impulse·c2.
+btVector3 holdImpulse(const btSoftBody::RContact& contact, const btVector3& position, btScalar dt, btScalar margin) {
+  const auto& holdBody = static_cast<const btRigidBody&>(*contact.m_cti.m_colObj);
+  const btVector3 relative = (position - contact.m_node->m_q) - holdBody.getLinearVelocity() * dt;
+  const btVector3& normal = contact.m_cti.m_normal;
+  const btScalar approach = relative.dot(normal);
+  if (approach > SIMD_EPSILON) return btVector3(0, 0, 0);
+  const btScalar depth = btMin(position.dot(normal) + contact.m_cti.m_offset, margin);
+  const btVector3 tangential = relative - normal * approach;
+  return contact.m_c0 * (relative - tangential * contact.m_c3 + normal * (depth * contact.m_c4));
+}
+
+}  // namespace
+
 void SoftBodySolverImpl::replaySharedHolds(btSoftBody& body, double inverseStepSquared) {
-  // Each hold as PSolve_RContacts solves it (a contact with a body of zero inverse mass whose
-  // velocity aims at the plane, fillHoldContact in ToolAlgorithm.cpp), from where the stage
-  // found the node, so that each tool gets the part of the move its own hold made.
+  // Each hold from where the stage found the node, so that each tool gets the part of the move its
+  // own hold made.
   const btScalar dt = body.m_sst.sdt;
   const btScalar margin = body.getCollisionShape()->getMargin();
   for (HeldNode& held : m_held) held.replayed = held.before;
   for (SharedHold& shared : m_sharedHolds) {
     HeldNode& held = m_held[static_cast<std::size_t>(shared.held)];
     const btSoftBody::RContact& contact = body.m_rcontacts[shared.contact];
-    const btSoftBody::Node& node = body.m_nodes[held.node];
-    const auto& holdBody = static_cast<const btRigidBody&>(*contact.m_cti.m_colObj);
-    const btVector3 relative = (held.replayed - node.m_q) - holdBody.getLinearVelocity() * dt;
-    const btVector3& normal = contact.m_cti.m_normal;
-    const btScalar approach = relative.dot(normal);
-    if (approach > SIMD_EPSILON) continue;
-    const btScalar depth = btMin(held.replayed.dot(normal) + contact.m_cti.m_offset, margin);
-    const btVector3 tangential = relative - normal * approach;
-    const btVector3 impulse = contact.m_c0 * (relative - tangential * contact.m_c3 + normal * (depth * contact.m_c4));
-    const btVector3 move = impulse * contact.m_c2;
+    const btVector3 move = holdImpulse(contact, held.replayed, dt, margin) * contact.m_c2;
     held.replayed -= move;
     shared.pushed -= move;
-    addHoldForce(shared.tool->state(), node, move, inverseStepSquared);
+    addHoldForce(shared.tool->state(), body.m_nodes[held.node], move, inverseStepSquared);
   }
 }
 
 void SoftBodySolverImpl::solveHoldsLast(btSoftBody& body) {
-  // PSolve_RContacts's arithmetic at full stiffness, over the holds alone: a pass of Bullet's
-  // whole contact stage after the links re-solved the body's other contacts too, and a pressure
-  // body shaking on the ground by itself then shook more than twice as fast (generated seeds 1193,
-  // 2148, 3220, 4092, 4450, 5044, 7343, 9903 with friction).
+  // The holds alone: a pass of Bullet's whole contact stage after the links re-solved the body's
+  // other contacts too, and a pressure body shaking on the ground by itself then shook more than
+  // twice as fast (generated seeds 1193, 2148, 3220, 4092, 4450, 5044, 7343, 9903 with friction).
   const btScalar dt = body.m_sst.sdt;
   const btScalar margin = body.getCollisionShape()->getMargin();
   for (const int c : m_holdContacts) {
     const btSoftBody::RContact& contact = body.m_rcontacts[c];
-    // A hold's body is a btRigidBody of ThinTool's own (PairState::holdBodies).
-    auto& holdBody = *static_cast<btRigidBody*>(const_cast<btCollisionObject*>(contact.m_cti.m_colObj));
-    btSoftBody::Node& node = *contact.m_node;
-    const btVector3 relative = (node.m_x - node.m_q) - holdBody.getVelocityInLocalPoint(contact.m_c1) * dt;
-    const btVector3& normal = contact.m_cti.m_normal;
-    const btScalar approach = relative.dot(normal);
-    if (approach > SIMD_EPSILON) continue;
-    const btScalar depth = btMin(node.m_x.dot(normal) + contact.m_cti.m_offset, margin);
-    const btVector3 tangential = relative - normal * approach;
-    const btVector3 impulse = contact.m_c0 * (relative - tangential * contact.m_c3 + normal * (depth * contact.m_c4));
-    node.m_x -= impulse * contact.m_c2;
-    holdBody.applyImpulse(impulse, contact.m_c1);
+    contact.m_node->m_x -= holdImpulse(contact, contact.m_node->m_x, dt, margin) * contact.m_c2;
   }
 }
 
