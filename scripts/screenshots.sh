@@ -4,7 +4,7 @@
 set -eu
 cd "$(dirname "$0")/.."
 export LIBGL_ALWAYS_SOFTWARE=1
-run() { xvfb-run -a -s "-screen 0 1280x720x24" "$@"; }
+run() { xvfb-run -a -s "-screen 0 1280x720x24 -noreset" "$@"; }
 run build/examples/plate_into_ball/plate_into_ball --screenshot docs/viewer-plate.png --after 60
 run build/examples/plate_into_ball/plate_into_ball --tool needle --screenshot docs/viewer-needle.png --after 60
 run build/examples/plate_into_ball/plate_into_ball --stock --screenshot docs/viewer-plate-stock.png --after 60

@@ -23,6 +23,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <stdexcept>
+#include <string>
 
 namespace thintool::viewer {
 
@@ -169,7 +170,10 @@ bool Camera::project(const btVector3& world, int width, int height, float& x, fl
 
 Viewer::Viewer(const ViewerSettings& settings) {
   if (glfwInit() != GLFW_TRUE) {
-    throw std::runtime_error("viewer: GLFW cannot start (no display? run under xvfb-run)");
+    const char* reason = nullptr;
+    glfwGetError(&reason);
+    throw std::runtime_error(std::string("viewer: GLFW cannot start (") + (reason ? reason : "no reason given") +
+                             "; no display? run under xvfb-run)");
   }
   glfwWindowHint(GLFW_VISIBLE, settings.visible ? GLFW_TRUE : GLFW_FALSE);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 2);
