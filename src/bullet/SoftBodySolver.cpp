@@ -143,6 +143,18 @@ const btSoftBody::Node* movedNode(const btSoftBody& softBody, const detail::Pair
   return node.m_im > 0 ? &node : nullptr;
 }
 
+// The free node of the pair's k-th hold in this step, or nullptr (pinned, or the hold's contact
+// since replaced), by the same checks the solve's holds pass.
+const btSoftBody::Node* heldNode(const btSoftBody& softBody, const detail::PairState& pair, int k) {
+  const int contact = pair.firstHold + k;
+  if (contact >= softBody.m_rcontacts.size() ||
+      softBody.m_rcontacts[contact].m_cti.m_colObj != pair.holdBodies[static_cast<std::size_t>(k)].get()) {
+    return nullptr;
+  }
+  const btSoftBody::Node* node = softBody.m_rcontacts[contact].m_node;
+  return node != nullptr && node->m_im > 0 ? node : nullptr;
+}
+
 // Every face's three edges, each as its nodes' indices (lower first), sorted.
 std::vector<std::pair<Index, Index>> sortedFaceEdges(const btSoftBody& softBody) {
   const int faceCount = softBody.m_faces.size();
@@ -827,7 +839,10 @@ void SoftBodySolverImpl::measureEnergy(btScalar timeStep) {
     btSoftBody& softBody = *m_softBodySet[s];
     BodyEnergy& energy = m_energy[static_cast<std::size_t>(s)];
     energy = BodyEnergy{};
-    // Guarded when a tool's response moved a node of it in the collision pass.
+    // Guarded when a tool's response moved a node of it in the collision pass or a tool's holds
+    // hold one in the solve: a hold alone, in a step the response moved nothing, moves its node to
+    // the tool's plane as hard as a correction (a tetrahedral box in jaws went from 8 to 105 m/s in
+    // three such steps, generated seed 35634).
     bool guarded = false;
     for (Tool* tool : m_configuration.tools()) {
       const EnergyGuardSettings& settings = tool->state().options.energyGuard;
@@ -841,7 +856,9 @@ void SoftBodySolverImpl::measureEnergy(btScalar timeStep) {
       for (const auto& pair : tool->state().pairs) {
         if (pair->softBody != &softBody || !pair->live) continue;
         if (!pair->response.corrections.empty() || pair->holdCount > 0) ++energy.piecesHolding;
-        if (pair->response.corrections.empty()) continue;
+        bool holding = false;
+        for (int k = 0; k < pair->holdCount && !holding; ++k) holding = heldNode(softBody, *pair, k) != nullptr;
+        if (pair->response.corrections.empty() && !holding) continue;
         if (!guarding) {
           corner = fastestCorner(*tool, before, now, inverseStep);
           energy.toolFastest = std::max(energy.toolFastest, corner);
@@ -853,19 +870,24 @@ void SoftBodySolverImpl::measureEnergy(btScalar timeStep) {
         energy.energySlack = std::max(energy.energySlack, double(settings.energySlack));
         energy.restingSpeed = std::max(energy.restingSpeed, double(settings.restingSpeed));
         energy.lastWordFollows = energy.lastWordFollows || tool->state().options.separation.enabled;
-        for (const NodeCorrection& correction : pair->response.corrections) {
-          const btSoftBody::Node* node = movedNode(softBody, *pair, correction);
-          if (node == nullptr) continue;
+        // Each node the tool moves, by the response or by a hold, may leave at the tool's speed
+        // there (a node both moved and held counts twice: the bound stays an upper one).
+        const auto allow = [&](const btSoftBody::Node* node) {
+          if (node == nullptr) return;
           const Vec3 at = toVec3(node->m_x);
           // No point of a convex piece moves faster than its fastest corner (the chord's velocity
           // is affine in the point): a node the response moved but left away from the piece, where
           // the tool's turn would sweep faster, is given the corner's speed at most.
           const double toolSpeed =
               std::min(double(length((at - before.apply(now.applyInverse(at))) * inverseStep)), corner);
-          if (!std::isfinite(toolSpeed)) continue;
+          if (!std::isfinite(toolSpeed)) return;
           energy.allowance += 0.5 * toolSpeed * toolSpeed / double(node->m_im);
           energy.toolAtMovedNodes = std::max(energy.toolAtMovedNodes, toolSpeed);
+        };
+        for (const NodeCorrection& correction : pair->response.corrections) {
+          allow(movedNode(softBody, *pair, correction));
         }
+        for (int k = 0; k < pair->holdCount; ++k) allow(heldNode(softBody, *pair, k));
       }
     }
     if (!guarded) continue;

@@ -24,34 +24,34 @@ namespace thintool {
 /// own solve already shakes, can then gain energy step after step until it flies apart. A passive
 /// contact cannot do that: a node hit by a tool point moving at u leaves at about u at most, and
 /// gains at most ½·m·u². So, for each soft body that the tool's response moved in the collision
-/// pass, after Bullet's solve and the last word:
-/// - no node moves faster than the faster of: speedFactor times the faster of 1 m/s and the
-///   tool's points at the nodes the response moved (a point no faster than the tool's fastest
-///   corner), and the body's fastest node as Bullet predicted it before the solve (its forces and
-///   gravity applied). The factor is not applied to the predicted speed, which carries the last
-///   step's: a body the guard holds to twice the tool's speed would otherwise be allowed twice that
-///   in the next step, and so on. A pressure body's prediction is no measure of its motion: Bullet
-///   applies the pressure there and the links take most of it back in the solve (a light vessel is
-///   predicted at 60 to 200 m/s where it ends its steps at 7). For such a body, measured in the
-///   step before, the predicted speed counts no higher than the fastest node the guard left then,
-///   or speedFactor times the fastest of the latest step the guard did not act in, which the guard
-///   measures while a guarding tool's pair with the body is live. The bound holds for a node's
-///   velocity after the last word and, where the tool's last word runs (separation.enabled), for
-///   its move in Bullet's solve, shortened to it before the last word, which puts back on its side
-///   a node the shorter move leaves in the tool;
-/// - the body's kinetic energy about its centre of mass, as the solve left it, is at most
-///   (1 + energySlack) times the same energy before the solve (each node's motion as Bullet set
-///   it up, (x - q)/dt, pose matching included, less the response's moves) plus ½·m·u² for each
-///   node the response moved, or ½·M·restingSpeed² for its mass M, whichever is more. The solve
-///   also turns the body's elastic energy (stretched links, pressure) into motion, which the
+/// pass or its holds hold in the solve, after Bullet's solve and the last word:
+/// - no node moves faster than the faster of: speedFactor times the faster of 1 m/s and the tool's
+///   points at the nodes the response moved or the holds hold (a point no faster than the tool's
+///   fastest corner), and the body's fastest node as Bullet predicted it before the solve (its
+///   forces and gravity applied). The factor is not applied to the predicted speed, which carries
+///   the last step's: a body the guard holds to twice the tool's speed would otherwise be allowed
+///   twice that in the next step, and so on. A pressure body's prediction is no measure of its
+///   motion: Bullet applies the pressure there and the links take most of it back in the solve (a
+///   light vessel is predicted at 60 to 200 m/s where it ends its steps at 7). For such a body,
+///   measured in the step before, the predicted speed counts no higher than the fastest node the
+///   guard left then, or speedFactor times the fastest of the latest step the guard did not act in,
+///   which the guard measures while a guarding tool's pair with the body is live. The bound holds
+///   for a node's velocity after the last word and, where the tool's last word runs
+///   (separation.enabled), for its move in Bullet's solve, shortened to it before the last word,
+///   which puts back on its side a node the shorter move leaves in the tool;
+/// - the body's kinetic energy about its centre of mass, as the solve left it, is at most (1 +
+///   energySlack) times the same energy before the solve (each node's motion as Bullet set it up,
+///   (x - q)/dt, pose matching included, less the response's moves) plus ½·m·u² for each node the
+///   response moved or a hold holds, or ½·M·restingSpeed² for its mass M, whichever is more. The
+///   solve also turns the body's elastic energy (stretched links, pressure) into motion, which the
 ///   energy before it does not see: internal motion up to that root-mean-square speed is taken as
 ///   the body's own.
-/// Over either bound, velocities are scaled down to it (about the centre of mass for the energy,
-/// so that a falling or pushed body keeps its motion as a whole); positions are touched only where
-/// a move in the solve was too long. It costs two passes over the body's nodes in the steps the
-/// response moves a node of it, one before the solve and one after, and a third when it has to
-/// slow nodes; the moves are checked in the solve's own last pass over the nodes. A pressure body
-/// costs one pass in each other step in which a guarding tool's pair with it is live.
+/// Over either bound, velocities are scaled down to it (about the centre of mass for the energy, so
+/// that a falling or pushed body keeps its motion as a whole); positions are touched only where a
+/// move in the solve was too long. It costs two passes over the body's nodes in the steps the
+/// response moves or the holds hold a node of it, one before the solve and one after, and a third
+/// when it has to slow nodes; the moves are checked in the solve's own last pass over the nodes. A
+/// pressure body costs one pass in each other step in which a guarding tool's pair with it is live.
 ///
 /// With boundForcesNextStep, the step after a guarded one bounds what the body's forces add: a
 /// pressure body that a fast tool has squeezed flat gets Bullet's pressure kPR·area/|volume| at a
