@@ -839,10 +839,14 @@ void SoftBodySolverImpl::measureEnergy(btScalar timeStep) {
     btSoftBody& softBody = *m_softBodySet[s];
     BodyEnergy& energy = m_energy[static_cast<std::size_t>(s)];
     energy = BodyEnergy{};
-    // Guarded when a tool's response moved a node of it in the collision pass or a tool's holds
-    // hold one in the solve: a hold alone, in a step the response moved nothing, moves its node to
-    // the tool's plane as hard as a correction (a tetrahedral box in jaws went from 8 to 105 m/s in
-    // three such steps, generated seed 35634).
+    // Guarded when a tool's response moved a node of it in the collision pass or the holds of a
+    // tool that does not give way hold one in the solve: such a hold alone, in a step the response
+    // moved nothing, moves its node to the tool's plane as hard as a correction (a tetrahedral box
+    // in kinematic jaws went from 8 to 105 m/s in three such steps, generated seed 35634). A
+    // dynamic tool gives way: it takes its holds' push back (reactToHolds, as an inelastic
+    // exchange) or its force model carries it, and slowing its held nodes broke that exchange (a
+    // force-carried plate bounced at 0.46 m/s in Bullet's float64 build,
+    // ForceScene.DynamicToolIsCarriedByTheForce; the gripper's cube weighed 13.5 % heavy there).
     bool guarded = false;
     for (Tool* tool : m_configuration.tools()) {
       const EnergyGuardSettings& settings = tool->state().options.energyGuard;
@@ -853,11 +857,14 @@ void SoftBodySolverImpl::measureEnergy(btScalar timeStep) {
       const Pose before = stepStart(*tool, now);
       bool guarding = false;
       double corner = 0;
+      const bool holdsCount = !tool->state().dynamic();
       for (const auto& pair : tool->state().pairs) {
         if (pair->softBody != &softBody || !pair->live) continue;
         if (!pair->response.corrections.empty() || pair->holdCount > 0) ++energy.piecesHolding;
         bool holding = false;
-        for (int k = 0; k < pair->holdCount && !holding; ++k) holding = heldNode(softBody, *pair, k) != nullptr;
+        for (int k = 0; k < pair->holdCount && holdsCount && !holding; ++k) {
+          holding = heldNode(softBody, *pair, k) != nullptr;
+        }
         if (pair->response.corrections.empty() && !holding) continue;
         if (!guarding) {
           corner = fastestCorner(*tool, before, now, inverseStep);
@@ -887,7 +894,7 @@ void SoftBodySolverImpl::measureEnergy(btScalar timeStep) {
         for (const NodeCorrection& correction : pair->response.corrections) {
           allow(movedNode(softBody, *pair, correction));
         }
-        for (int k = 0; k < pair->holdCount; ++k) allow(heldNode(softBody, *pair, k));
+        for (int k = 0; k < pair->holdCount && holdsCount; ++k) allow(heldNode(softBody, *pair, k));
       }
     }
     if (!guarded) continue;

@@ -242,9 +242,9 @@ TEST(GeneratedScenes, FrictionLeavesAPressureBodysGroundContactsAsStockSolvesThe
   }
 }
 
-// The energy guard watches every step in which a tool's holds hold a node, not only those in which
-// its response moved one: a hold alone puts its node on the tool's plane in Bullet's solve as hard
-// as a move. Unwatched, such steps threw nodes at 101 to 254 m/s beside tools at 2.9 to 6.7 m/s: a
+// The energy guard watches every step in which a kinematic tool's holds hold a node, not only those
+// in which its response moved one: a hold alone puts its node on the tool's plane in Bullet's solve
+// as hard as a move. Unwatched, such steps threw nodes at 101 to 254 m/s beside tools at 2.9 to 6.7 m/s: a
 // tetrahedral box between jaws closing at 4.2 m/s (35634), and with friction, a pinned sheet on a
 // needle (12115), a pressure vessel under a blade (12468) and a tetrahedral box under a 1 mm
 // plate (13958).

@@ -24,7 +24,8 @@ namespace thintool {
 /// own solve already shakes, can then gain energy step after step until it flies apart. A passive
 /// contact cannot do that: a node hit by a tool point moving at u leaves at about u at most, and
 /// gains at most ½·m·u². So, for each soft body that the tool's response moved in the collision
-/// pass or its holds hold in the solve, after Bullet's solve and the last word:
+/// pass or, for a kinematic or static tool, its holds hold in the solve (a dynamic tool gives way
+/// and takes their push back), after Bullet's solve and the last word:
 /// - no node moves faster than the faster of: speedFactor times the faster of 1 m/s and the tool's
 ///   points at the nodes the response moved or the holds hold (a point no faster than the tool's
 ///   fastest corner), and the body's fastest node as Bullet predicted it before the solve (its
