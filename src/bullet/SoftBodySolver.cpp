@@ -857,12 +857,12 @@ void SoftBodySolverImpl::measureEnergy(btScalar timeStep) {
       const Pose before = stepStart(*tool, now);
       bool guarding = false;
       double corner = 0;
-      const bool holdsCount = !tool->state().dynamic();
+      const bool guardsHolds = !tool->state().dynamic();  // its holds alone make the guard act
       for (const auto& pair : tool->state().pairs) {
         if (pair->softBody != &softBody || !pair->live) continue;
         if (!pair->response.corrections.empty() || pair->holdCount > 0) ++energy.piecesHolding;
         bool holding = false;
-        for (int k = 0; k < pair->holdCount && holdsCount && !holding; ++k) {
+        for (int k = 0; k < pair->holdCount && guardsHolds && !holding; ++k) {
           holding = heldNode(softBody, *pair, k) != nullptr;
         }
         if (pair->response.corrections.empty() && !holding) continue;
@@ -894,7 +894,7 @@ void SoftBodySolverImpl::measureEnergy(btScalar timeStep) {
         for (const NodeCorrection& correction : pair->response.corrections) {
           allow(movedNode(softBody, *pair, correction));
         }
-        for (int k = 0; k < pair->holdCount && holdsCount; ++k) allow(heldNode(softBody, *pair, k));
+        for (int k = 0; k < pair->holdCount && guardsHolds; ++k) allow(heldNode(softBody, *pair, k));
       }
     }
     if (!guarded) continue;

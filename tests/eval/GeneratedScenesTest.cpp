@@ -202,6 +202,23 @@ TEST(GeneratedScenes, AHoldPlaneReachLetsASqueezedPressureBodyBulgePastTheTool) 
                                 << " --no-energy-guard --hold-reach 4";
 }
 
+// One seed with an option the scene file has (set), which must pass; option is its command-line
+// form, for the reproducing command.
+void expectPasses(std::uint64_t seed, const char* option, void (*set)(SceneSpec&)) {
+  SceneSpec scene = generateScene(seed, kScenes);
+  set(scene);
+  const Verdict verdict = runAndJudge(scene);
+  EXPECT_FALSE(verdict.failed) << "seed " << seed << ": " << joinReasons(verdict) << "\n  reproduce: "
+                               << reproduce(seed) << " " << option;
+}
+
+void withFriction(SceneSpec& scene) {
+  scene.friction = true;
+  scene.frictionFromBodies = true;
+}
+
+void asGenerated(SceneSpec&) {}
+
 // The energy guard reads a light pressure body's own speed from the steps before, not from Bullet's
 // prediction, which applies the pressure that the links take back in the solve (predicted 49 to
 // 205 m/s where the body ends its steps at 7): a pressure vessel beside a slow plate, with friction
@@ -209,17 +226,6 @@ TEST(GeneratedScenes, AHoldPlaneReachLetsASqueezedPressureBodyBulgePastTheTool) 
 // that a blade turning 98° a step sticks to, with friction (5587). Each failed the energy check
 // while the guard's fallback was the predicted speed: nodes at 67, 70 and 3,340 m/s.
 TEST(GeneratedScenes, TheEnergyGuardKeepsPressureBodiesToTheirOwnSpeed) {
-  const auto expectPasses = [](std::uint64_t seed, const char* option, void (*set)(SceneSpec&)) {
-    SceneSpec scene = generateScene(seed, kScenes);
-    set(scene);
-    const Verdict verdict = runAndJudge(scene);
-    EXPECT_FALSE(verdict.failed) << "seed " << seed << ": " << joinReasons(verdict) << "\n  reproduce: "
-                                 << reproduce(seed) << " " << option;
-  };
-  const auto withFriction = [](SceneSpec& scene) {
-    scene.friction = true;
-    scene.frictionFromBodies = true;
-  };
   expectPasses(189, "--friction", withFriction);
   expectPasses(6261, "--scan-faces", [](SceneSpec& scene) { scene.scanFaces = true; });
   expectPasses(5587, "--friction", withFriction);
@@ -232,35 +238,18 @@ TEST(GeneratedScenes, TheEnergyGuardKeepsPressureBodiesToTheirOwnSpeed) {
 // kinematic jaws at 0.01 to 0.5 m/s (1193, 3220, 4450) and a pressure vessel beside a needle at
 // 0.16 m/s (9903). Seeds 2148, 4092, 5044 and 7343 failed the same way (`--friction`).
 TEST(GeneratedScenes, FrictionLeavesAPressureBodysGroundContactsAsStockSolvesThem) {
-  for (const std::uint64_t seed : {1193u, 3220u, 4450u, 9903u}) {
-    SceneSpec scene = generateScene(seed, kScenes);
-    scene.friction = true;
-    scene.frictionFromBodies = true;
-    const Verdict verdict = runAndJudge(scene);
-    EXPECT_FALSE(verdict.failed) << "seed " << seed << ": " << joinReasons(verdict) << "\n  reproduce: " << reproduce(seed)
-                                 << " --friction";
-  }
+  for (const std::uint64_t seed : {1193u, 3220u, 4450u, 9903u}) expectPasses(seed, "--friction", withFriction);
 }
 
 // The energy guard watches every step in which a kinematic tool's holds hold a node, not only those
 // in which its response moved one: a hold alone puts its node on the tool's plane in Bullet's solve
-// as hard as a move. Unwatched, such steps threw nodes at 101 to 254 m/s beside tools at 2.9 to 6.7 m/s: a
-// tetrahedral box between jaws closing at 4.2 m/s (35634), and with friction, a pinned sheet on a
+// as hard as a move. Unwatched, such steps threw nodes at 101 to 254 m/s beside tools at 2.9 to
+// 6.7 m/s: a tetrahedral box between jaws closing at 4.2 m/s (35634), and with friction, a pinned sheet on a
 // needle (12115), a pressure vessel under a blade (12468) and a tetrahedral box under a 1 mm
 // plate (13958).
 TEST(GeneratedScenes, TheEnergyGuardWatchesStepsInWhichOnlyTheHoldsAct) {
-  struct Case {
-    std::uint64_t seed;
-    bool friction;
-  };
-  for (const Case c : {Case{35634, false}, Case{12115, true}, Case{12468, true}, Case{13958, true}}) {
-    SceneSpec scene = generateScene(c.seed, kScenes);
-    scene.friction = c.friction;
-    scene.frictionFromBodies = c.friction;
-    const Verdict verdict = runAndJudge(scene);
-    EXPECT_FALSE(verdict.failed) << "seed " << c.seed << ": " << joinReasons(verdict) << "\n  reproduce: "
-                                 << reproduce(c.seed) << (c.friction ? " --friction" : "");
-  }
+  expectPasses(35634, "", asGenerated);
+  for (const std::uint64_t seed : {12115u, 12468u, 13958u}) expectPasses(seed, "--friction", withFriction);
 }
 
 // The paper's discrete detection (with the last word and the energy guard) on scenes in which
