@@ -742,7 +742,9 @@ Index slidePinnedFacesClear(const ToolModel& piece, const PieceMotion& motion, c
   constexpr int kGridSteps = 64;
   constexpr int kBisections = 10;
   constexpr int kMostDirections = 64;
-  // Halfway directions for a piece of few planes (a box: its 12 edges); many planes are their own.
+  // Halfway directions for a piece of few planes, one per triangle: a wedge blade's eight. A box's
+  // twelve slide along its face normals alone, which keeps a slid node on its side of the rim
+  // (Separation.TheLastResortSlidesAFaceWithAPinnedNodePastTheRim); many planes are their own.
   constexpr std::size_t kMostPlanesForHalfways = 8;
   const Pose& end = motion.end();
   const Index vertexCount = patch.vertexCount();
