@@ -5,7 +5,9 @@
 // down (1 m/s at 60 Hz) to 5 mm into a sphere of radius 1, tessellated from 1,280 to 81,920
 // triangles. As in the Bullet glue, only the faces near the plate's swept box are handed to
 // detection. DetectionStep runs the paper's discrete rays and checks (without the reverse ray,
-// which the glue casts through Bullet's tree), SweptStep the swept detection, on the same input.
+// which the glue casts through Bullet's tree), SweptStep the swept detection, on the same input,
+// and SweptStepRoundTool the swept detection of a ball of radius 0.3 m (a hull of 480 edges)
+// pressed as far into the same spheres.
 
 #include "TestMeshes.h"
 
@@ -14,6 +16,8 @@
 #include "response/Response.h"
 
 #include <benchmark/benchmark.h>
+
+#include <utility>
 
 namespace thintool {
 namespace {
@@ -67,17 +71,27 @@ constexpr Real kSkin = 0.005;
 constexpr Real kDt = 1.0 / 60;
 constexpr Real kStepDisplacement = 1.0 / 60;  // 1 m/s at 60 Hz
 
+// A round tool: a ball of radius 0.3 m, the hull of an icosphere of 162 points and 480 edges, as
+// Bullet's sphere shapes are round tools (its demos drape cloth over them). Every hull edge is a
+// feature edge that swept detection tests against the soft edges near it.
+ToolModel roundTool() {
+  ToolModelSettings settings;
+  settings.sampling.spacing = 0.05;
+  return buildToolModel(test::icosphere(0.3, {0, 0, 0}, 2), settings);
+}
+
 struct PressedSphere {
-  ToolModel model = plate(0.05);  // 576 nodes
+  ToolModel model;
   Pose previous;
   Pose pose;
   SoftPatch patch;
   Index sphereFaces = 0;
 
-  explicit PressedSphere(int subdivisions) {
+  // The tool's lowest point ends 5 mm inside the sphere.
+  PressedSphere(int subdivisions, ToolModel tool = plate(0.05) /* 576 nodes */) : model(std::move(tool)) {
     const ConvexMesh sphere = test::icosphere(1, {0, 0, 0}, subdivisions);
     sphereFaces = static_cast<Index>(sphere.triangles.size());
-    pose.translation = {0, 1 - 0.005 + 0.01, 0};
+    pose.translation = {0, 1 - 0.005 - model.bounds.min.y, 0};
     previous.translation = pose.translation + Vec3{0, kStepDisplacement, 0};
     Aabb box;
     for (const Vec3& v : model.mesh.vertices) {
@@ -126,6 +140,22 @@ void SweptStep(benchmark::State& state) {
   scene.count(state, result.counters);
 }
 BENCHMARK(SweptStep)->DenseRange(3, 6)->Unit(benchmark::kMicrosecond);
+
+void SweptStepRoundTool(benchmark::State& state) {
+  const PressedSphere scene(int(state.range(0)), roundTool());
+  SideMemory memory;
+  memory.resize(scene.patch.vertexCount() * 64, scene.patch.faceCount() * 64);
+  SweptWorkspace workspace;
+  DetectionResult result;
+  const StepContext step{scene.model, scene.previous, scene.pose, kDt, kSkin};
+  for (auto _ : state) {
+    detectSwept(step, scene.patch, memory, workspace, result);
+    benchmark::DoNotOptimize(result.contacts.data());
+  }
+  scene.count(state, result.counters);
+  state.counters["toolEdges"] = double(scene.model.featureEdges.size());
+}
+BENCHMARK(SweptStepRoundTool)->DenseRange(3, 6)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace thintool

@@ -22,6 +22,10 @@ constexpr Real kOnSurface = 1e-9;
 // float coordinates (Bullet's float build) leave a line of three nodes with about 1e-7 of it.
 constexpr Real kCollapsed = 1e-6;
 
+// Relative margin on a comparison of squares that stands in for one of lengths, so that rounding
+// in either form cannot make them disagree.
+constexpr Real kSquaresMargin = 1e-6;
+
 Aabb boxOf(std::initializer_list<Vec3> points) {
   Aabb box;
   for (const Vec3& p : points) box.include(p);
@@ -197,6 +201,23 @@ struct Sweep {
          isNode ? kInvalidIndex : point - model.nodeCount(), face.face);
   }
 
+  // Whether the soft edge's line ends clear of the tool edge's line by more than the skin, on the
+  // side it started on, beyond any doubt from rounding: what edge() returns early for, decided on
+  // squares so that the pairs it skips (most of those near a round tool) cost no square root. The
+  // margins only leave borderline pairs to edge()'s own reading. w0, w1: the lines' common normals
+  // (unnormalised) at the start and the end; fromStart, fromEnd: the soft edge's first node from
+  // the tool edge's first point.
+  bool clearAtEnd(const Vec3& w0, const Vec3& w1, const Vec3& fromStart, const Vec3& fromEnd) const {
+    const Real startDot = dot(w0, fromStart);
+    if (!(startDot * startDot > 4 * onSurface * onSurface * lengthSquared(w0))) {
+      return false;  // on or near the tool edge's line at the start: no side to read quickly
+    }
+    const int side = signOf(startDot);
+    const int endSide = dot(w0, w1) >= 0 ? side : -side;
+    const Real ahead = Real(endSide) * dot(w1, fromEnd);
+    return ahead > 0 && ahead * ahead > skin * skin * lengthSquared(w1) * (1 + kSquaresMargin);
+  }
+
   // A static tool edge against a moving soft edge (patch vertices e0, e1).
   void edge(Index toolEdge, Index e0, Index e1) {
     ++counters.triangleTests;
@@ -205,6 +226,9 @@ struct Sweep {
     const Vec3 along = p1 - p0;
     const Vec3 w0 = cross(along, start[e1] - start[e0]);
     const Vec3 w1 = cross(along, end[e1] - end[e0]);
+    if (clearAtEnd(w0, w1, start[e0] - p0, end[e0] - p0)) {
+      return;
+    }
     const Real w0Length = length(w0);
     const Real w1Length = length(w1);
     const Real scale = length(along) * std::max(length(start[e1] - start[e0]), length(end[e1] - end[e0]));
