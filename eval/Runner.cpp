@@ -249,6 +249,10 @@ RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
   soft.m_cfg.piterations = scene.soft.positionIterations.value_or(variant.positionIterations);
   soft.m_cfg.kDP = btScalar(1 - std::pow(1 - scene.soft.damping, 60 * substep));
   soft.setTotalMass(btScalar(scene.soft.mass));
+  if (scene.soft.poseMatching > 0) {
+    soft.m_cfg.kMT = btScalar(scene.soft.poseMatching);
+    soft.setPose(false, true);
+  }
   const double softMargin = scene.soft.margin.value_or(variant.margin);
   soft.getCollisionShape()->setMargin(btScalar(softMargin));
   if (options.world == scenes::WorldKind::Deformable) {

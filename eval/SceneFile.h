@@ -62,6 +62,10 @@ struct SoftBodySpec {
   double pressure = 50;        ///< kPR, Pa; 0 for a sheet
   double friction = 0.5;       ///< kDF
   double damping = 0.05;       ///< kDP at a 1/60 s step; other steps get the same damping per second
+  /// kMT, 0..1: pose matching, which pulls the body towards its rest shape each step (Bullet's
+  /// setPose(false, true), as its demos' pose-matched torus); 0 leaves it off. Not read from scene
+  /// files (the scene generator sets it).
+  double poseMatching = 0;
   // Solver overrides, not read from scene files (the scene generator sets them): when set, they
   // replace the algorithm variant's values, so every algorithm runs the same soft solver.
   std::optional<int> positionIterations;  ///< piterations

@@ -52,6 +52,16 @@ class Draw {
   std::mt19937_64 m_engine;
 };
 
+// SplitMix64's finaliser (Steele, Lea and Flood, "Fast splittable pseudorandom number generators",
+// 2014): a second stream's seed that shares nothing with the first's. The engine's own seeding
+// keeps nearby seeds' early outputs alike (seeds 10 and 24 drew the same second number).
+std::uint64_t splitMix(std::uint64_t x) {
+  x += 0x9e3779b97f4a7c15ULL;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+  return x ^ (x >> 31);
+}
+
 // The rotation vector (degrees) of a rotation matrix, through its quaternion (Shepperd's method,
 // steady at any angle).
 Vec3 rotationVectorOf(const Mat3& m) {
@@ -112,6 +122,70 @@ ToolPieceSpec bladePiece(double length, double height, double thickness) {
   // Two end caps and the three sides, each side two triangles (SolidDistance orients them).
   hull.triangles = {{0, 2, 1}, {3, 4, 5}, {0, 1, 4}, {0, 4, 3}, {1, 2, 5}, {1, 5, 4}, {2, 0, 3}, {2, 3, 5}};
   return piece;
+}
+
+// A round hull about the x axis: `profile` lists (x, distance from the axis) from one pole to the
+// other, each ring kRoundSegments points round the axis (a pole, at distance 0, one point).
+ToolPieceSpec roundPiece(const std::vector<std::array<double, 2>>& profile) {
+  ToolPieceSpec piece;
+  piece.kind = ToolPieceSpec::Kind::Hull;
+  ConvexSolid& hull = piece.hull;
+  std::vector<int> first;  // each ring's first vertex
+  for (const auto& [x, r] : profile) {
+    first.push_back(int(hull.vertices.size()));
+    const int count = r > 0 ? kRoundSegments : 1;
+    for (int k = 0; k < count; ++k) {
+      const double angle = 2 * kPi * k / kRoundSegments;
+      hull.vertices.push_back({x, r * std::cos(angle), r * std::sin(angle)});
+    }
+  }
+  // Between each pair of rings: a fan at a pole, two triangles a quad elsewhere (SolidDistance
+  // orients them).
+  for (std::size_t i = 0; i + 1 < profile.size(); ++i) {
+    const bool poleHere = !(profile[i][1] > 0);
+    const bool poleNext = !(profile[i + 1][1] > 0);
+    for (int k = 0; k < kRoundSegments; ++k) {
+      const int k1 = (k + 1) % kRoundSegments;
+      const int a = first[i] + (poleHere ? 0 : k), b = first[i] + (poleHere ? 0 : k1);
+      const int c = first[i + 1] + (poleNext ? 0 : k), d = first[i + 1] + (poleNext ? 0 : k1);
+      if (!poleHere) hull.triangles.push_back({a, b, c});
+      if (!poleNext) hull.triangles.push_back({b, d, c});
+    }
+  }
+  return piece;
+}
+
+// Rings from pole to pole of a sphere of this radius, its halves apart by `length` along x.
+std::vector<std::array<double, 2>> capsuleProfile(double radius, double length) {
+  std::vector<std::array<double, 2>> profile;
+  for (int i = 0; i <= kRoundRings; ++i) {
+    const double latitude = kPi * i / kRoundRings;
+    const double x = radius * std::cos(latitude) + (2 * i < kRoundRings ? length / 2 : -length / 2);
+    profile.push_back({x, i == 0 || i == kRoundRings ? 0 : radius * std::sin(latitude)});
+    if (2 * i == kRoundRings && length > 0) profile.push_back({-length / 2, radius});
+  }
+  profile[kRoundRings / 2][0] = length / 2;
+  return profile;
+}
+
+// A round tool (kRoundToolChance): a ball, a capsule, or a box and a ball side by side.
+std::vector<ToolPieceSpec> drawRoundTool(Draw& draw, std::string& name) {
+  const double what = draw.unit();
+  if (what < 1.0 / 3) {
+    name = "ball";
+    return {roundPiece(capsuleProfile(draw.logUniform(kMinBallRadius, kMaxBallRadius), 0))};
+  }
+  if (what < 2.0 / 3) {
+    name = "capsule";
+    const double radius = draw.logUniform(kMinCapsuleRadius, kMaxCapsuleRadius);
+    return {roundPiece(capsuleProfile(radius, draw.uniform(kMinCapsuleLength, kMaxCapsuleLength)))};
+  }
+  name = "box and ball";
+  const double radius = draw.logUniform(kMinBallRadius, kMaxBallRadius);
+  std::vector<ToolPieceSpec> pieces{boxPiece({radius, radius, radius}), roundPiece(capsuleProfile(radius, 0))};
+  pieces[0].offset.translation = {-radius, 0, 0};
+  pieces[1].offset.translation = {radius * 1.2, 0, 0};
+  return pieces;
 }
 
 std::vector<ToolPieceSpec> drawTool(Draw& draw, ToolKind kind) {
@@ -182,8 +256,9 @@ std::string significant(double value) {
 
 }  // namespace
 
-SceneSpec generateScene(std::uint64_t seed, const std::string& sceneFolder) {
+SceneSpec generateScene(std::uint64_t seed, const std::string& sceneFolder, const GeneratorOptions& options) {
   Draw draw(seed);
+  Draw kinds(splitMix(seed));  // GeneratorOptions::bulletKinds' own stream
   SceneSpec scene;
   scene.name = "generated-" + std::to_string(seed);
   scene.algorithm = AlgorithmKind::Swept;
@@ -252,6 +327,9 @@ SceneSpec generateScene(std::uint64_t seed, const std::string& sceneFolder) {
   soft.margin = draw.logUniform(kMinMargin, kMaxMargin);
   soft.mass = draw.logUniform(kMinSoftMass, kMaxSoftMass);
   soft.friction = draw.uniform(kMinFriction, kMaxFriction);
+  if (options.bulletKinds && kinds.chance(kPoseMatchingChance)) {
+    soft.poseMatching = kinds.uniform(kMinPoseMatching, kMaxPoseMatching);
+  }
 
   // The tool.
   ToolSpec tool;
@@ -263,6 +341,9 @@ SceneSpec generateScene(std::uint64_t seed, const std::string& sceneFolder) {
   static const char* const kToolNames[] = {"plate", "needle", "blade", "jaws"};
   tool.name = kToolNames[int(kind)];
   tool.pieces = drawTool(draw, kind);
+  // The drawn tool's draws are taken all the same, so that the rest of the scene stays the seed's.
+  const bool round = options.bulletKinds && kinds.chance(kRoundToolChance);
+  if (round) tool.pieces = drawRoundTool(kinds, tool.name);
   if (draw.chance(kDynamicChance)) tool.mass = draw.logUniform(kMinToolMass, kMaxToolMass);
 
   // The approach: direction, tilt, start.
@@ -272,7 +353,7 @@ SceneSpec generateScene(std::uint64_t seed, const std::string& sceneFolder) {
   if (draw.chance(0.5)) {
     // The leading feature to the body: the needle's tip, the plate's and jaws' edge, the blade's
     // edge; rolled at random about the approach, then off by up to 15°.
-    const Vec3 lead = kind == ToolKind::Blade ? Vec3{0, -1, 0} : Vec3{1, 0, 0};
+    const Vec3 lead = kind == ToolKind::Blade && !round ? Vec3{0, -1, 0} : Vec3{1, 0, 0};
     const double roll = draw.uniform(0, 2 * kPi);
     const Vec3 jitterAxis = draw.direction();
     const double jitter = draw.uniform(0, 15) * kDegrees;
@@ -386,6 +467,7 @@ std::string describeScene(const SceneSpec& scene) {
           (soft.positionIterations ? std::to_string(*soft.positionIterations) : std::string("-")) + " margin " +
           (soft.margin ? significant(*soft.margin) : std::string("-")) + " m mass " + significant(soft.mass) +
           " kg kDF " + fixed(soft.friction, 2);
+  if (soft.poseMatching > 0) text += " kMT " + fixed(soft.poseMatching, 2);
 
   for (const ToolSpec& tool : scene.tools) {
     text += "; " + tool.name;
@@ -399,7 +481,7 @@ std::string describeScene(const SceneSpec& scene) {
     }
     const Vec3 size = high - low;
     text += " " + significant(size.x * 1000) + "x" + significant(size.y * 1000) + "x" + significant(size.z * 1000) + " mm";
-    if (tool.pieces.size() == 2) {
+    if (tool.name == "jaws") {
       const double gap = length(tool.pieces[0].offset.translation - tool.pieces[1].offset.translation) - size.y;
       text += " gap " + significant(gap * 1000) + " mm";
     }

@@ -141,12 +141,39 @@ inline constexpr double kMaxSeconds = 1.5;
 inline constexpr int kMinMeasuredSteps = 20;
 inline constexpr double kWorkBudget = 3e5;  ///< soft nodes × steps
 
+// Bullet's own kinds (GeneratorOptions::bulletKinds), from a stream of draws of their own.
+/// Round tools, as Bullet's demos drape cloth over spheres, capsules and compounds: in this share
+/// of the scenes the tool is, with even chances, a ball, a capsule along its x axis, or a compound
+/// of a box and a ball side by side (the box a cube of the ball's diameter); each round piece a
+/// hull of kRoundSegments meridians and kRoundRings steps from pole to pole.
+inline constexpr double kRoundToolChance = 0.3;
+inline constexpr int kRoundSegments = 12;
+inline constexpr int kRoundRings = 8;
+inline constexpr double kMinBallRadius = 0.01;     ///< m, log
+inline constexpr double kMaxBallRadius = 0.3;      ///< m
+inline constexpr double kMinCapsuleRadius = 0.002; ///< m, log
+inline constexpr double kMaxCapsuleRadius = 0.03;  ///< m
+inline constexpr double kMinCapsuleLength = 0.1;   ///< m, between its caps' centres
+inline constexpr double kMaxCapsuleLength = 0.6;   ///< m
+/// Pose matching (Bullet's kMT with setPose(false, true), its demos' torus) in this share of the
+/// scenes, at a kMT drawn between these.
+inline constexpr double kPoseMatchingChance = 0.3;
+inline constexpr double kMinPoseMatching = 0.05;
+inline constexpr double kMaxPoseMatching = 0.5;
+
 }  // namespace generated
+
+struct GeneratorOptions {
+  /// Also draw Bullet's own kinds that the scenes above leave out: round tools and pose-matched
+  /// bodies (the constants above). The rest of each seed's scene stays what it is without them:
+  /// their draws come from a stream of their own.
+  bool bulletKinds = false;
+};
 
 /// The scene of this seed, named "generated-<seed>", algorithm Swept (ThinTool's default).
 /// sceneFolder: eval/scenes, where vessel.obj is read from. Throws thintool::Error when the
 /// vessel cannot be read.
-SceneSpec generateScene(std::uint64_t seed, const std::string& sceneFolder);
+SceneSpec generateScene(std::uint64_t seed, const std::string& sceneFolder, const GeneratorOptions& options = {});
 
 /// One line: the soft body, its material, the tool, its motion (the start as planned, before the
 /// runner moves the path onto the settled body) and the step.

@@ -51,6 +51,9 @@ inside the soft body, pierced faces, penetration deeper than 0.1 mm, non-finite 
   --deformable       build each scene in btDeformableMultiBodyDynamicsWorld: the soft body a
                      mass-spring body (springs tied to its node mass and the step), Bullet's
                      implicit solve and rigid contacts, ThinTool's last word after it
+  --bullet-kinds     also draw Bullet's own kinds the scenes otherwise leave out: round tools (a
+                     ball, a capsule, a box and a ball) and pose-matched bodies (kMT); the rest of
+                     each seed's scene is the same as without it
   --within-thickness judge only the scenes in which every tool moved less than its own thickness in
                      every step (the narrowest width of its thinnest piece); the rest run, and are
                      counted apart
@@ -126,6 +129,7 @@ int main(int argc, char** argv) {
   bool softMultiBody = false;
   bool deformable = false;
   bool withinThickness = false;
+  GeneratorOptions generatorOptions;
   std::string sceneFolder = THINTOOL_EVAL_SCENES;
   try {
     for (int i = 1; i < argc; ++i) {
@@ -166,6 +170,8 @@ int main(int argc, char** argv) {
         softMultiBody = true;
       } else if (arg == "--deformable") {
         deformable = true;
+      } else if (arg == "--bullet-kinds") {
+        generatorOptions.bulletKinds = true;
       } else if (arg == "--within-thickness") {
         withinThickness = true;
       } else if (arg == "--verbose") {
@@ -200,7 +206,7 @@ int main(int argc, char** argv) {
   for (std::uint64_t seed : seeds) {
     Verdict verdict;
     try {
-      SceneSpec scene = generateScene(seed, sceneFolder);
+      SceneSpec scene = generateScene(seed, sceneFolder, generatorOptions);
       scene.algorithm = algorithm;
       scene.lastWord = lastWord;
       scene.holds = holds;
@@ -245,13 +251,13 @@ int main(int argc, char** argv) {
     energy += verdict.energy;
     refused += verdict.refused;
     const std::string reach = holdReach.has_value() ? " --hold-reach " + formatNumber(*holdReach) : "";
-    std::printf("seed %llu failed: %s; reproduce: %s --seed %llu --algorithm %s%s%s%s%s%s%s%s%s%s%s --verbose\n",
+    std::printf("seed %llu failed: %s; reproduce: %s --seed %llu --algorithm %s%s%s%s%s%s%s%s%s%s%s%s --verbose\n",
                 static_cast<unsigned long long>(seed), joinReasons(verdict).c_str(), argv[0],
                 static_cast<unsigned long long>(seed), algorithmKey(algorithm), lastWord ? "" : " --no-last-word",
                 holds ? "" : " --no-holds", reach.c_str(), energyGuard ? "" : " --no-energy-guard",
                 boundForces ? "" : " --no-force-bound", scanFaces ? " --scan-faces" : "",
                 friction ? " --friction" : "", softMultiBody ? " --soft-multibody" : "",
-                deformable ? " --deformable" : "",
+                deformable ? " --deformable" : "", generatorOptions.bulletKinds ? " --bullet-kinds" : "",
                 withinThickness ? " --within-thickness" : "");
     std::fflush(stdout);
   }

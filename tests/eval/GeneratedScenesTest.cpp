@@ -4,18 +4,20 @@
 // ThinTool on random scenes: seeds 1 to 300 in blocks, split between Bullet's worlds (1 to 200
 // and 251 to 288 in btSoftRigidDynamicsWorld, 201 to 250 in btSoftMultiBodyDynamicsWorld, 289 to
 // 300 in btDeformableMultiBodyDynamicsWorld, whose implicit solve makes a scene take ten times as
-// long), and the seeds that once found a bug (eval/generated/regressions.txt), each run with
-// ThinTool's default algorithm and judged by the ground truth alone (eval/SceneJudge.h). A failing
-// seed is reported with the command that shows it step by step.
+// long), seeds 1 to 50 with Bullet's own kinds drawn too (GeneratorOptions::bulletKinds), and the
+// seeds that once found a bug (eval/generated/regressions.txt), each run with ThinTool's default
+// algorithm and judged by the ground truth alone (eval/SceneJudge.h). A failing seed is reported
+// with the command that shows it step by step.
 //
-// The seeds of eval/generated/open.txt (open-deformable.txt in the deformable world) fail today,
-// in Bullet's float build: they are run and reported, with only their writes into Bullet's state
-// asserted finite, so that every other seed guards against a regression while they wait for a
-// fix; one that starts to pass is reported too, to be moved to regressions.txt. Those from beyond
-// the blocks below run in a test of their own. The ground
-// truth's verdict on a chaotic scene depends on Bullet's precision, so these tests carry the label
-// "generated" and scripts/test.sh runs them in the float build only; RunCleanly runs everywhere,
-// the sanitizers included, and asks only that the scenes run to the end with finite nodes.
+// The seeds of eval/generated/open.txt (open-deformable.txt in the deformable world,
+// open-bullet-kinds.txt with Bullet's kinds) fail today, in Bullet's float build: they are run and
+// reported, with only their writes into Bullet's state asserted finite, so that every other seed
+// guards against a regression while they wait for a fix; one that starts to pass is reported too,
+// to be moved to regressions.txt. Those from beyond the blocks below run in a test of their own.
+// The ground truth's verdict on a chaotic scene depends on Bullet's precision, so these tests carry
+// the label "generated" and scripts/test.sh runs them in the float build only; RunCleanly runs
+// everywhere, the sanitizers included, and asks only that the scenes run to the end with finite
+// nodes.
 
 #include <Runner.h>
 #include <SceneGenerator.h>
@@ -44,10 +46,10 @@ struct Outcome {
   double nonFiniteWrites = 0;  ///< ThinTool's report: its writes that left Bullet's state not finite
 };
 
-Outcome runSeed(std::uint64_t seed, const RunOptions& options = {}) {
+Outcome runSeed(std::uint64_t seed, const RunOptions& options = {}, const GeneratorOptions& kinds = {}) {
   Outcome outcome;
   try {
-    const SceneSpec scene = generateScene(seed, kScenes);
+    const SceneSpec scene = generateScene(seed, kScenes, kinds);
     outcome.description = describeScene(scene);
     RunResult run;
     outcome.verdict = runAndJudge(scene, options, &run);
@@ -58,29 +60,39 @@ Outcome runSeed(std::uint64_t seed, const RunOptions& options = {}) {
   return outcome;
 }
 
-std::string reproduce(std::uint64_t seed, const RunOptions& options = {}) {
+std::string reproduce(std::uint64_t seed, const RunOptions& options = {}, const GeneratorOptions& kinds = {}) {
   const char* world = options.world == scenes::WorldKind::SoftMultiBody ? " --soft-multibody"
                       : options.world == scenes::WorldKind::Deformable  ? " --deformable"
                                                                          : "";
-  return "build/eval/thintool_generated --seed " + std::to_string(seed) + world + " --verbose";
+  return "build/eval/thintool_generated --seed " + std::to_string(seed) + world +
+         (kinds.bulletKinds ? " --bullet-kinds" : "") + " --verbose";
 }
 
-// The seeds that fail today in the options' world.
-const std::vector<std::uint64_t>& openSeeds(const RunOptions& options) {
+GeneratorOptions withBulletKinds() {
+  GeneratorOptions kinds;
+  kinds.bulletKinds = true;
+  return kinds;
+}
+
+// The seeds that fail today in the options' world, with the generator's options.
+const std::vector<std::uint64_t>& openSeeds(const RunOptions& options, const GeneratorOptions& kinds = {}) {
   static const std::vector<std::uint64_t> classic = readSeedFile(kGenerated + "/open.txt");
   static const std::vector<std::uint64_t> deformable = readSeedFile(kGenerated + "/open-deformable.txt");
+  static const std::vector<std::uint64_t> bulletKinds = readSeedFile(kGenerated + "/open-bullet-kinds.txt");
+  if (kinds.bulletKinds) return bulletKinds;
   return options.world == scenes::WorldKind::Deformable ? deformable : classic;
 }
 
-void expectNoFailures(const std::vector<std::uint64_t>& seeds, const RunOptions& options = {}) {
-  const std::vector<std::uint64_t>& open = openSeeds(options);
+void expectNoFailures(const std::vector<std::uint64_t>& seeds, const RunOptions& options = {},
+                      const GeneratorOptions& kinds = {}) {
+  const std::vector<std::uint64_t>& open = openSeeds(options, kinds);
   int failed = 0;
   int stillOpen = 0;
   for (std::uint64_t seed : seeds) {
     const bool known = std::find(open.begin(), open.end(), seed) != open.end();
-    const Outcome outcome = runSeed(seed, options);
+    const Outcome outcome = runSeed(seed, options, kinds);
     // Whatever the verdict: no write of ThinTool's may leave Bullet's state not finite.
-    EXPECT_EQ(outcome.nonFiniteWrites, 0) << "seed " << seed << "\n  reproduce: " << reproduce(seed, options);
+    EXPECT_EQ(outcome.nonFiniteWrites, 0) << "seed " << seed << "\n  reproduce: " << reproduce(seed, options, kinds);
     if (known) {
       stillOpen += outcome.verdict.failed ? 1 : 0;
       if (!outcome.verdict.failed) {
@@ -91,7 +103,7 @@ void expectNoFailures(const std::vector<std::uint64_t>& seeds, const RunOptions&
     if (!outcome.verdict.failed) continue;
     ++failed;
     ADD_FAILURE() << "seed " << seed << ": " << joinReasons(outcome.verdict) << "\n  " << outcome.description
-                  << "\n  reproduce: " << reproduce(seed, options);
+                  << "\n  reproduce: " << reproduce(seed, options, kinds);
   }
   EXPECT_EQ(failed, 0) << "of " << seeds.size() << " seeds";
   std::printf("%zu seeds: %d failed, %d open seeds still failing\n", seeds.size(), failed, stillOpen);
@@ -123,9 +135,14 @@ TEST(GeneratedScenes, Seeds289To300InTheDeformableWorld) {
   deformable.world = scenes::WorldKind::Deformable;
   expectNoFailures(block(kFirstDeformableSeed, kLastBlockSeed), deformable);
 }
+// Bullet's own kinds (GeneratorOptions::bulletKinds): round tools and pose-matched bodies.
+constexpr std::uint64_t kLastBulletKindsSeed = 50;
+TEST(GeneratedScenes, Seeds1To50WithBulletKinds) {
+  expectNoFailures(block(1, kLastBulletKindsSeed), {}, withBulletKinds());
+}
 
-// The open seeds that the blocks above do not run: from beyond them in the classic world, and
-// outside their deformable block in the deformable one.
+// The open seeds that the blocks above do not run: from beyond them in the classic world, outside
+// their deformable block in the deformable one, and beyond theirs with Bullet's kinds.
 TEST(GeneratedScenes, OpenSeedsBeyondTheBlocks) {
   std::vector<std::uint64_t> classic;
   for (std::uint64_t seed : openSeeds({})) {
@@ -137,8 +154,13 @@ TEST(GeneratedScenes, OpenSeedsBeyondTheBlocks) {
   for (std::uint64_t seed : openSeeds(deformable)) {
     if (seed < kFirstDeformableSeed || seed > kLastBlockSeed) inTheDeformableWorld.push_back(seed);
   }
+  std::vector<std::uint64_t> withKinds;
+  for (std::uint64_t seed : openSeeds({}, withBulletKinds())) {
+    if (seed > kLastBulletKindsSeed) withKinds.push_back(seed);
+  }
   expectNoFailures(classic);
   expectNoFailures(inTheDeformableWorld, deformable);
+  expectNoFailures(withKinds, {}, withBulletKinds());
 }
 
 // The regression seeds in three shares (every third seed of the file each), so that two cores

@@ -176,6 +176,54 @@ TEST(SceneGenerator, AThousandSeedsStayInTheirRangesAndCoverEveryKind) {
   EXPECT_LT(largeEllipsoids, 100);  // rare enough to keep the runs short
 }
 
+// The scene without the text pose matching adds to its description.
+std::string withoutPoseMatching(std::string text) {
+  const std::size_t at = text.find(" kMT ");
+  if (at != std::string::npos) text.erase(at, 9);  // " kMT 0.xx"
+  return text;
+}
+
+TEST(SceneGenerator, BulletKindsChangeOnlyTheToolAndThePoseMatching) {
+  GeneratorOptions kindsOn;
+  kindsOn.bulletKinds = true;
+  std::set<std::string> roundTools;
+  int poseMatched = 0;
+  for (std::uint64_t seed = 1; seed <= 300; ++seed) {
+    const SceneSpec plain = generateScene(seed, kScenes);
+    const SceneSpec kinds = generateScene(seed, kScenes, kindsOn);
+    EXPECT_EQ(plain.soft.poseMatching, 0) << seed;
+    if (kinds.soft.poseMatching != 0) {
+      ++poseMatched;
+      expectWithin(kinds.soft.poseMatching, kMinPoseMatching, kMaxPoseMatching, "kMT", seed);
+    }
+    const ToolSpec& tool = kinds.tools.at(0);
+    if (tool.name == plain.tools.at(0).name) {
+      // The same tool: the same scene, down to the path, but for the pose matching.
+      EXPECT_EQ(withoutPoseMatching(describeScene(kinds)), describeScene(plain)) << seed;
+      continue;
+    }
+    roundTools.insert(tool.name);
+    EXPECT_EQ(kinds.timeStep, plain.timeStep) << seed;
+    EXPECT_EQ(kinds.soft.mesh, plain.soft.mesh) << seed;
+    EXPECT_EQ(tool.mass, plain.tools[0].mass) << seed;
+    // Every round piece is a closed convex solid (or SolidDistance throws), as wide as drawn.
+    const bool ball = tool.name == "ball";
+    const SolidDistance round(tool.pieces.back().hull);
+    const Vec3 half = round.halfExtents();
+    if (tool.name == "capsule") {
+      expectWithin(half.y, kMinCapsuleRadius, kMaxCapsuleRadius, "capsule radius", seed);
+      expectWithin(2 * half.x - 2 * half.y, kMinCapsuleLength, kMaxCapsuleLength, "capsule length", seed);
+    } else {
+      expectWithin(half.x, kMinBallRadius, kMaxBallRadius, "ball radius", seed);
+      EXPECT_NEAR(half.x, half.y, 1e-12) << seed;
+      EXPECT_EQ(tool.pieces.size(), ball ? 1u : 2u) << seed;
+    }
+  }
+  EXPECT_EQ(roundTools, (std::set<std::string>{"ball", "capsule", "box and ball"}));
+  EXPECT_GT(poseMatched, 50);
+  EXPECT_LT(poseMatched, 150);
+}
+
 TEST(SceneGenerator, SeedFilesSkipCommentsAndNameTheirBadLines) {
   const std::string path = ::testing::TempDir() + "/seeds.txt";
   {
