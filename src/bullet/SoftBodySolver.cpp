@@ -1367,11 +1367,12 @@ void SoftBodySolverImpl::findNearPieces(const Tool& tool, Index p, const PieceMo
   }
 }
 
-Index SoftBodySolverImpl::patchVertexOf(const btSoftBody& softBody, Index node) {
+Index SoftBodySolverImpl::patchVertexOf(const btSoftBody& softBody, const SoftBodyCache& cache, Index node) {
   Index& vertex = m_vertexOfNode[node];
   if (vertex == kInvalidIndex) {
     const btSoftBody::Node& soft = softBody.m_nodes[static_cast<int>(node)];
-    vertex = m_patch.addVertex(node, toVec3(soft.m_q), toVec3(soft.m_x), Real(soft.m_im));
+    const bool enclosed = cache.begin[node] == cache.begin[node + 1];  // on no face
+    vertex = m_patch.addVertex(node, toVec3(soft.m_q), toVec3(soft.m_x), Real(soft.m_im), enclosed);
   }
   return vertex;
 }
@@ -1382,7 +1383,8 @@ void SoftBodySolverImpl::addPatchFace(const btSoftBody& softBody, const SoftBody
   m_patchFaces.push_back(f);
   const std::array<Index, 3>& corners = cache.faceNodes[f];
   m_patch.faces.push_back(
-      {patchVertexOf(softBody, corners[0]), patchVertexOf(softBody, corners[1]), patchVertexOf(softBody, corners[2])});
+      {patchVertexOf(softBody, cache, corners[0]), patchVertexOf(softBody, cache, corners[1]),
+       patchVertexOf(softBody, cache, corners[2])});
 }
 
 // A move can carry a node's other faces into the tool, faces the gather had no reason to take:
@@ -1490,7 +1492,7 @@ SeparationCounts SoftBodySolverImpl::separatePiece(Tool& tool, const ToolModel& 
     const btSoftBody::Node& node = softBody.m_nodes[static_cast<int>(i)];
     if (!segmentMeets(grown, node.m_q, node.m_x)) return;
     m_nearNodes.push_back(i);
-    if (segmentMeets(swept, node.m_q, node.m_x)) patchVertexOf(softBody, i);
+    if (segmentMeets(swept, node.m_q, node.m_x)) patchVertexOf(softBody, cache, i);
   };
   if (cache.candidatesHold && faceReach <= cache.candidateReach) {
     // In the nodes' order, as a walk over all of them would meet them: the patch, and so the

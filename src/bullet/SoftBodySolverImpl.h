@@ -191,7 +191,7 @@ class SoftBodySolverImpl {
                              const SoftBodyCache& cache, const std::vector<NearPiece>& near,
                              SeparationCounts& counts);
   // The patch's vertex of a soft node, added with the node when absent; a soft face, added once.
-  Index patchVertexOf(const btSoftBody& softBody, Index node);
+  Index patchVertexOf(const btSoftBody& softBody, const SoftBodyCache& cache, Index node);
   void addPatchFace(const btSoftBody& softBody, const SoftBodyCache& cache, Index f);
   // The body's cache with its topology up to date, not yet surveyed in this step.
   SoftBodyCache& topologyOf(const btSoftBody& softBody);

@@ -69,10 +69,15 @@ struct NodeVerdict {
 // only if both readings take it through; one that ends inside leaves by the face the chord entered
 // by, else the arc's, else the nearest. Without a turn the two readings are one.
 NodeVerdict judgeNode(const ToolModel& piece, const PieceMotion& motion, const Pose* poses, const Vec3& start,
-                      const Vec3& end, Real clearance, Vec3& outEndLocal) {
+                      const Vec3& end, bool enclosed, Real clearance, Vec3& outEndLocal) {
   const std::vector<Plane>& planes = piece.planes;
+  // A node of the surface may ride round a piece's rounded side, in by one face and out by the
+  // next; a node enclosed by the surface cannot, and any way through is a way across (interior
+  // nodes of tetrahedral boxes went through balls 1 to 7 cm deep, in one step, out by faces less
+  // than 60° from the way in: generated seeds 577 and 1881 with round tools).
   const auto carries = [&](Index enter, Index leave) {
-    return enter != kInvalidIndex && leave != kInvalidIndex && dot(planes[enter].normal, planes[leave].normal) < kTurnedAway;
+    return enter != kInvalidIndex && leave != kInvalidIndex &&
+           (enclosed || dot(planes[enter].normal, planes[leave].normal) < kTurnedAway);
   };
   // On the arc the node may go in and come back out by the same face: it went through when, inside,
   // it came nearer to a face turned away from the one it entered by than to that face, where the
@@ -589,7 +594,8 @@ bool groupGoesThrough(const ToolModel& piece, const PieceMotion& motion, const P
     if (patch.inCluster[v] == 0) continue;
     Vec3 ignored;
     const Vec3 moved = patch.positions[v] + motion.end().applyToDirection(shift);
-    if (judgeNode(piece, motion, poses, patch.startPositions[v], moved, clearance, ignored).fix) return true;
+    const bool enclosed = patch.enclosed[v] != 0;
+    if (judgeNode(piece, motion, poses, patch.startPositions[v], moved, enclosed, clearance, ignored).fix) return true;
   }
   return false;
 }
@@ -639,7 +645,8 @@ NodeVerdict putNodeOutside(const ToolModel& piece, const PieceMotion& motion, co
                            Index v, SeparationPatch& patch) {
   Vec3 local;
   const NodeVerdict verdict =
-      judgeNode(piece, motion, poses, patch.startPositions[v], patch.positions[v], clearance, local);
+      judgeNode(piece, motion, poses, patch.startPositions[v], patch.positions[v], patch.enclosed[v] != 0, clearance,
+                local);
   if (!verdict.fix) return verdict;
   const Plane& plane = piece.planes[verdict.plane];
   const Pose& end = motion.end();
@@ -1115,7 +1122,8 @@ SeparationCounts carryMeetingFaces(const ToolModel& piece, const PieceMotion& mo
     for (Index v : patch.faces[f]) {
       Vec3 local;
       if (patch.inverseMasses[v] > 0 &&
-          judgeNode(piece, motion, poses, patch.startPositions[v], patch.positions[v], settings.clearance, local).fix) {
+          judgeNode(piece, motion, poses, patch.startPositions[v], patch.positions[v], patch.enclosed[v] != 0,
+                    settings.clearance, local).fix) {
         return true;
       }
     }

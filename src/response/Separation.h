@@ -76,6 +76,9 @@ struct SeparationPatch {
   std::vector<Vec3> startPositions;  ///< where each node began the step
   std::vector<Vec3> solvedPositions;  ///< where the solver left each node (positions before the stage)
   std::vector<Real> inverseMasses;   ///< 0: pinned, never moved
+  /// 1: the node is on no face of its body, inside a volume's surface (a tetrahedral body's
+  /// interior node). It never lies against a piece: any path of it through one went through.
+  std::vector<unsigned char> enclosed;
   std::vector<std::array<Index, 3>> faces;  ///< patch vertex indices
   std::vector<Index> nodeIds;        ///< the caller's ids, one per vertex
   /// Output: the stage moved the vertex, and the direction of its last move (world, unit): the
@@ -96,7 +99,7 @@ struct SeparationPatch {
   bool consistent() const {
     const std::size_t n = positions.size();
     if (startPositions.size() != n || solvedPositions.size() != n || inverseMasses.size() != n ||
-        nodeIds.size() != n || moved.size() != n || directions.size() != n) {
+        enclosed.size() != n || nodeIds.size() != n || moved.size() != n || directions.size() != n) {
       return false;
     }
     for (const std::array<Index, 3>& face : faces) {
@@ -106,12 +109,13 @@ struct SeparationPatch {
     }
     return true;
   }
-  Index addVertex(Index id, const Vec3& start, const Vec3& end, Real inverseMass) {
+  Index addVertex(Index id, const Vec3& start, const Vec3& end, Real inverseMass, bool isEnclosed = false) {
     nodeIds.push_back(id);
     startPositions.push_back(start);
     solvedPositions.push_back(end);
     positions.push_back(end);
     inverseMasses.push_back(inverseMass);
+    enclosed.push_back(isEnclosed ? 1 : 0);
     moved.push_back(0);
     directions.push_back({});
     return static_cast<Index>(positions.size() - 1);
@@ -121,6 +125,7 @@ struct SeparationPatch {
     startPositions.clear();
     solvedPositions.clear();
     inverseMasses.clear();
+    enclosed.clear();
     faces.clear();
     nodeIds.clear();
     moved.clear();

@@ -5,9 +5,9 @@
 // and 251 to 288 in btSoftRigidDynamicsWorld, 201 to 250 in btSoftMultiBodyDynamicsWorld, 289 to
 // 300 in btDeformableMultiBodyDynamicsWorld, whose implicit solve makes a scene take ten times as
 // long), seeds 1 to 50 with Bullet's own kinds drawn too (GeneratorOptions::bulletKinds), and the
-// seeds that once found a bug (eval/generated/regressions.txt), each run with ThinTool's default
-// algorithm and judged by the ground truth alone (eval/SceneJudge.h). A failing seed is reported
-// with the command that shows it step by step.
+// seeds that once found a bug (eval/generated/regressions.txt, regressions-bullet-kinds.txt with
+// Bullet's kinds), each run with ThinTool's default algorithm and judged by the ground truth alone
+// (eval/SceneJudge.h). A failing seed is reported with the command that shows it step by step.
 //
 // The seeds of eval/generated/open.txt (open-deformable.txt in the deformable world,
 // open-bullet-kinds.txt with Bullet's kinds) fail today, in Bullet's float build: they are run and
@@ -175,6 +175,9 @@ std::vector<std::uint64_t> regressionShare(std::size_t share) {
 TEST(GeneratedScenes, RegressionsFirstShare) { expectNoFailures(regressionShare(0)); }
 TEST(GeneratedScenes, RegressionsSecondShare) { expectNoFailures(regressionShare(1)); }
 TEST(GeneratedScenes, RegressionsThirdShare) { expectNoFailures(regressionShare(2)); }
+TEST(GeneratedScenes, RegressionsWithBulletKinds) {
+  expectNoFailures(readSeedFile(kGenerated + "/regressions-bullet-kinds.txt"), {}, withBulletKinds());
+}
 
 // Each seed passes as generated and fails the energy check once `without` switches a stage off.
 template <typename SwitchOff>

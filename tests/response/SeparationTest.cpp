@@ -2,6 +2,9 @@
 // Copyright (c) 2026 The ThinTool developers
 #include "response/Separation.h"
 
+#include "TestMeshes.h"
+#include "geometry/Ccd.h"
+
 #include <gtest/gtest.h>
 
 #include <array>
@@ -57,6 +60,28 @@ TEST(Separation, NodeCarriedThroughGoesBackAndOneRoundTheRimStays) {
   EXPECT_EQ(p.patch.moved[round], 0);
   EXPECT_NEAR(p.patch.positions[corner].x, 0.2 + kClearance, 1e-12);
   EXPECT_EQ(p.patch.positions[corner].y, -0.05);
+}
+
+TEST(Separation, ANodeEnclosedByTheSurfaceGoesBackFromAPathThroughARoundPiece) {
+  // A ball of radius 1 (the hull of an icosphere of 320 faces), still. Both nodes pass under
+  // its top, 0.1 deep, in by a face and out by one less than 60° from it: a node of the surface rode
+  // round the top and stays; a node the surface encloses (a tetrahedral body's interior node)
+  // cannot ride against the piece, went through it, and goes in front of the face it entered by.
+  const ToolModel ball = buildToolModel(test::icosphere(1, {0, 0, 0}, 2), ToolModelSettings{});
+  const Vec3 start{-0.8, 0.9, 0};
+  const Vec3 end{0.8, 0.9, 0};
+  Patch p;
+  const Index riding = p.node(start, end);
+  const Index enclosed = p.node(start, end);
+  p.patch.enclosed[enclosed] = 1;
+  const SeparationCounts counts = separateFromPiece(ball, PieceMotion(Pose{}, Pose{}, 0.1), {}, p.patch);
+  EXPECT_EQ(counts.nodesInside, 0u);
+  EXPECT_EQ(p.patch.moved[riding], 0);
+  EXPECT_EQ(p.patch.positions[riding], end);
+  EXPECT_EQ(p.patch.moved[enclosed], 1);
+  const Vec3& back = p.patch.positions[enclosed];
+  EXPECT_GT(outsideDistance(ball.planes, back), 0);
+  EXPECT_FALSE(clipSegmentConvex(ball.planes, 0, start, back).hit) << "its way from the start no longer goes through";
 }
 
 TEST(Separation, ATurnSweepsAlongItsArcNotItsChord) {
