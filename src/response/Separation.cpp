@@ -640,7 +640,8 @@ Index shiftGroup(const Pose& end, const Vec3& shift, const Vec3& direction, Sepa
   return moved;
 }
 
-// A movable node that judgeNode sends back goes out by its face, the clearance beyond it.
+// A movable node that judgeNode sends back goes out by its face, the clearance beyond it; a node on
+// no face, to where it was beside the piece at the start of the step, carried with it.
 NodeVerdict putNodeOutside(const ToolModel& piece, const PieceMotion& motion, const Pose* poses, Real clearance,
                            Index v, SeparationPatch& patch) {
   Vec3 local;
@@ -648,8 +649,21 @@ NodeVerdict putNodeOutside(const ToolModel& piece, const PieceMotion& motion, co
       judgeNode(piece, motion, poses, patch.startPositions[v], patch.positions[v], patch.enclosed[v] != 0, clearance,
                 local);
   if (!verdict.fix) return verdict;
-  const Plane& plane = piece.planes[verdict.plane];
   const Pose& end = motion.end();
+  // A node on no face that went through goes back where it was in the piece's frame at the start,
+  // outside it: in front of the face it entered by, a node of a box and a ball side by side went
+  // into the box, and pass after pass the two pieces sent it into each other (generated seed 1881
+  // with --bullet-kinds). The pieces of one tool share that motion: it was outside all of them.
+  if (patch.enclosed[v] != 0) {
+    const Vec3 atStart = motion.start().applyInverse(patch.startPositions[v]);
+    if (outsideDistance(piece.planes, atStart) >= clearance) {
+      patch.positions[v] = end.apply(atStart);
+      patch.moved[v] = 1;
+      patch.directions[v] = normalizedOrZero(patch.positions[v] - end.apply(local));
+      return verdict;
+    }
+  }
+  const Plane& plane = piece.planes[verdict.plane];
   patch.positions[v] = end.apply(local + plane.normal * (clearance - plane.signedDistance(local)));
   patch.moved[v] = 1;
   patch.directions[v] = end.applyToDirection(plane.normal);
