@@ -126,8 +126,8 @@ void DetectionStep(benchmark::State& state) {
 }
 BENCHMARK(DetectionStep)->DenseRange(3, 6)->Unit(benchmark::kMicrosecond);
 
-void SweptStep(benchmark::State& state) {
-  const PressedSphere scene(int(state.range(0)));
+// Times swept detection on the scene, and writes its counters.
+void timeSweptDetection(benchmark::State& state, const PressedSphere& scene) {
   SideMemory memory;
   memory.resize(scene.patch.vertexCount() * 64, scene.patch.faceCount() * 64);
   SweptWorkspace workspace;
@@ -139,20 +139,13 @@ void SweptStep(benchmark::State& state) {
   }
   scene.count(state, result.counters);
 }
+
+void SweptStep(benchmark::State& state) { timeSweptDetection(state, PressedSphere(int(state.range(0)))); }
 BENCHMARK(SweptStep)->DenseRange(3, 6)->Unit(benchmark::kMicrosecond);
 
 void SweptStepRoundTool(benchmark::State& state) {
   const PressedSphere scene(int(state.range(0)), roundTool());
-  SideMemory memory;
-  memory.resize(scene.patch.vertexCount() * 64, scene.patch.faceCount() * 64);
-  SweptWorkspace workspace;
-  DetectionResult result;
-  const StepContext step{scene.model, scene.previous, scene.pose, kDt, kSkin};
-  for (auto _ : state) {
-    detectSwept(step, scene.patch, memory, workspace, result);
-    benchmark::DoNotOptimize(result.contacts.data());
-  }
-  scene.count(state, result.counters);
+  timeSweptDetection(state, scene);
   state.counters["toolEdges"] = double(scene.model.featureEdges.size());
 }
 BENCHMARK(SweptStepRoundTool)->DenseRange(3, 6)->Unit(benchmark::kMicrosecond);

@@ -73,8 +73,8 @@ NodeVerdict judgeNode(const ToolModel& piece, const PieceMotion& motion, const P
   const std::vector<Plane>& planes = piece.planes;
   // A node of the surface may ride round a piece's rounded side, in by one face and out by the
   // next; a node enclosed by the surface cannot, and any way through is a way across (interior
-  // nodes of tetrahedral boxes went through balls 1 to 7 cm deep, in one step, out by faces less
-  // than 60° from the way in: generated seeds 577 and 1881 with round tools).
+  // nodes of tetrahedral boxes went through balls 0.1 to 73 mm deep in one step, out by faces less
+  // than 60° from the way in: generated seeds 577 and 1280 with --bullet-kinds).
   const auto carries = [&](Index enter, Index leave) {
     return enter != kInvalidIndex && leave != kInvalidIndex &&
            (enclosed || dot(planes[enter].normal, planes[leave].normal) < kTurnedAway);
