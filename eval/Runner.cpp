@@ -112,7 +112,8 @@ btSoftBody* makeSoftBody(const SceneSpec& scene, btSoftBodyWorldInfo& info) {
   const Vec3& c = soft.centre;
   return btSoftBodyHelpers::CreatePatch(info, toBt(c + Vec3{-h, 0, -h}), toBt(c + Vec3{h, 0, -h}),
                                         toBt(c + Vec3{-h, 0, h}), toBt(c + Vec3{h, 0, h}),
-                                        soft.nodesPerSide, soft.nodesPerSide, 1 + 2 + 4 + 8, true);
+                                        soft.nodesPerSide, soft.nodesPerSide, soft.pinnedCorners ? 1 + 2 + 4 + 8 : 0,
+                                        true);
 }
 
 btCollisionShape* makePieceShape(const ToolPieceSpec& piece, World& w) {

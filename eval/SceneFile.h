@@ -51,6 +51,7 @@ struct SoftBodySpec {
   // Sheet: a square patch in the xz plane, nodesPerSide² nodes, pinned at its four corners.
   double sheetSize = 1;     ///< m, side (also the tetra box's edge)
   int nodesPerSide = 17;
+  bool pinnedCorners = true;  ///< false: a free cloth. Not read from scene files (the scene generator sets it)
   // Tetra: a closed box of tetrahedra, edge sheetSize, resting where centre puts it: tetraCells
   // cubes a side, six tetrahedra each, built by btSoftBodyHelpers::CreateFromTetGenData; its
   // surface is the tetrahedra's outer faces, and its links their edges. Not read from scene files

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <random>
 #include <sstream>
 #include <string>
@@ -254,6 +255,46 @@ std::string significant(double value) {
   return text;
 }
 
+// A free cloth dropped on the tool, which waits under it and then lifts it (kDrapeChance): the
+// scene's sheet, tool, tilt, speed and turn, a path of its own.
+void drapeOverTool(SceneSpec& scene, ToolSpec& tool, double toolTop, double reach, double speed, double turnPerStep,
+                   int stepCap, Draw& draw) {
+  SoftBodySpec& soft = scene.soft;
+  soft.pinnedCorners = false;
+  scene.ground = true;
+  scene.settleSeconds = 0;  // it would fall before the tool is there
+  tool.mass = 0;
+  const double dt = scene.timeStep;
+  const double gravity = length(scene.gravity);
+  const double fallTime = stepCap * dt / 3;
+  const double drop =
+      std::min(*soft.margin + draw.logUniform(kMinClearance, kMaxClearance), 0.5 * gravity * fallTime * fallTime);
+  const double lowest = reach + *soft.margin + kDrapeGroundGap;
+  soft.centre.y = std::max(soft.centre.y, lowest + toolTop + drop);
+  const double side = soft.sheetSize;
+  const Vec3 rest{draw.uniform(-0.25, 0.25) * side, soft.centre.y - drop - toolTop, draw.uniform(-0.25, 0.25) * side};
+
+  TrajectorySpec& path = tool.trajectory;
+  const Vec3 rotation = path.waypoints.front().rotation;
+  path.plannedBodyBox.reset();
+  path.waypoints.clear();
+  path.waypoints.push_back({0, rest, rotation});
+  long step = long(std::ceil(std::sqrt(2 * drop / gravity) / dt)) + draw.integer(2, 20);
+  path.waypoints.push_back({double(step) * dt, rest, rotation});
+  const int moves = draw.integer(0, 3);
+  for (int i = 0; i < moves; ++i) {
+    const TrajectorySpec::Waypoint last = path.waypoints.back();
+    const Vec3 target = last.position + Vec3{draw.uniform(-0.25, 0.25) * side, draw.uniform(0, 0.5) * side,
+                                             draw.uniform(-0.25, 0.25) * side};
+    const long steps = std::max(1L, long(std::ceil(length(target - last.position) / (speed * dt))));
+    Vec3 turned = last.rotation;
+    if (turnPerStep > 0 && draw.chance(0.5)) turned += draw.direction() * (turnPerStep * double(steps));
+    step += steps;
+    path.waypoints.push_back({double(step) * dt, target, turned});
+  }
+  scene.duration = double(std::min<long>(stepCap, step + draw.integer(5, 15))) * dt;
+}
+
 }  // namespace
 
 SceneSpec generateScene(std::uint64_t seed, const std::string& sceneFolder, const GeneratorOptions& options) {
@@ -364,11 +405,13 @@ SceneSpec generateScene(std::uint64_t seed, const std::string& sceneFolder, cons
   }
   Vec3 toolHalf;
   double reach = 0;
+  double toolTop = -std::numeric_limits<double>::max();  // above the tool's origin
   for (const ToolPieceSpec& piece : tool.pieces) {
     for (const Vec3& v : solidOf(piece).vertices) {
       const Vec3 p = tilt * piece.offset.apply(v);
       toolHalf = componentMax(toolHalf, {std::abs(p.x), std::abs(p.y), std::abs(p.z)});
       reach = std::max(reach, length(p));
+      toolTop = std::max(toolTop, p.y);
     }
   }
 
@@ -438,6 +481,9 @@ SceneSpec generateScene(std::uint64_t seed, const std::string& sceneFolder, cons
   const long measured = std::min<long>(stepCap, step + draw.integer(5, 15));
   scene.duration = double(measured) * dt;
   scene.holdSeconds = 0;
+  if (options.bulletKinds && sheet && kinds.chance(kDrapeChance)) {
+    drapeOverTool(scene, tool, toolTop, reach, speed, turnPerStep, stepCap, kinds);
+  }
   scene.tools.push_back(std::move(tool));
   return scene;
 }
@@ -457,7 +503,8 @@ std::string describeScene(const SceneSpec& scene) {
       break;
     case SoftBodySpec::Mesh::Sheet:
       text += "sheet " + std::to_string(soft.nodesPerSide) + "x" + std::to_string(soft.nodesPerSide) + " nodes " +
-              fixed(soft.sheetSize, 2) + " m at y " + fixed(soft.centre.y, 2) + " m" + (scene.ground ? "" : " no ground");
+              fixed(soft.sheetSize, 2) + " m at y " + fixed(soft.centre.y, 2) + " m" + (soft.pinnedCorners ? "" : " free") +
+              (scene.ground ? "" : " no ground");
       break;
     case SoftBodySpec::Mesh::Tetra:
       text += "tetra box " + std::to_string(soft.tetraCells) + "^3 cells " + fixed(soft.sheetSize, 2) + " m";

@@ -160,12 +160,23 @@ inline constexpr double kMaxCapsuleLength = 0.6;   ///< m
 inline constexpr double kPoseMatchingChance = 0.3;
 inline constexpr double kMinPoseMatching = 0.05;
 inline constexpr double kMaxPoseMatching = 0.5;
+/// Draped cloth, as Bullet's demos drop cloth over resting bodies: in this share of the sheet
+/// scenes the sheet is free (no pinned corner) and starts above a kinematic tool that waits under
+/// its middle half, on the ground, without settling. It falls from the soft margin plus a
+/// clearance (kMinClearance..kMaxClearance, log) over the tool's top, or from as high as it falls
+/// in a third of the measured time; the tool holds until it has landed and 2 to 20 steps more,
+/// then makes 0 to 3 moves at the scene's speed and turn, each up by 0 to half the sheet's side
+/// and sideways by up to a quarter of it: lifting the cloth, never pressing it to the ground, where
+/// a thin tool's cloth has no way out. The tool's centre stays its reach plus the margin and
+/// kDrapeGroundGap above the ground, whichever way it turns.
+inline constexpr double kDrapeChance = 0.4;
+inline constexpr double kDrapeGroundGap = 0.05;  ///< m
 
 }  // namespace generated
 
 struct GeneratorOptions {
-  /// Also draw Bullet's own kinds that the scenes above leave out: round tools and pose-matched
-  /// bodies (the constants above). The rest of each seed's scene stays what it is without them:
+  /// Also draw Bullet's own kinds that the scenes above leave out: round tools, pose-matched
+  /// bodies and draped cloth (the constants above). The rest of each seed's scene stays what it is without them:
   /// their draws come from a stream of their own.
   bool bulletKinds = false;
 };

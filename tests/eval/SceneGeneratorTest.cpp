@@ -192,6 +192,8 @@ TEST(SceneGenerator, BulletKindsChangeOnlyTheToolAndThePoseMatching) {
     const SceneSpec plain = generateScene(seed, kScenes);
     const SceneSpec kinds = generateScene(seed, kScenes, kindsOn);
     EXPECT_EQ(plain.soft.poseMatching, 0) << seed;
+    EXPECT_TRUE(plain.soft.pinnedCorners) << seed;
+    if (!kinds.soft.pinnedCorners) continue;  // a draped cloth: DrapedClothFallsOnAToolThatWaitsUnderIt
     if (kinds.soft.poseMatching != 0) {
       ++poseMatched;
       expectWithin(kinds.soft.poseMatching, kMinPoseMatching, kMaxPoseMatching, "kMT", seed);
@@ -222,6 +224,56 @@ TEST(SceneGenerator, BulletKindsChangeOnlyTheToolAndThePoseMatching) {
   EXPECT_EQ(roundTools, (std::set<std::string>{"ball", "capsule", "box and ball"}));
   EXPECT_GT(poseMatched, 50);
   EXPECT_LT(poseMatched, 150);
+}
+
+TEST(SceneGenerator, DrapedClothFallsOnAToolThatWaitsUnderIt) {
+  GeneratorOptions kindsOn;
+  kindsOn.bulletKinds = true;
+  int draped = 0, sheets = 0, moved = 0;
+  for (std::uint64_t seed = 1; seed <= 1000; ++seed) {
+    const SceneSpec plain = generateScene(seed, kScenes);
+    const SceneSpec scene = generateScene(seed, kScenes, kindsOn);
+    sheets += plain.soft.mesh == SoftBodySpec::Mesh::Sheet;
+    if (scene.soft.pinnedCorners) continue;
+    ++draped;
+    EXPECT_EQ(plain.soft.mesh, SoftBodySpec::Mesh::Sheet) << seed;
+    EXPECT_EQ(scene.soft.mesh, SoftBodySpec::Mesh::Sheet) << seed;
+    EXPECT_EQ(scene.timeStep, plain.timeStep) << seed;
+    EXPECT_EQ(scene.settleSeconds, 0) << seed;
+    EXPECT_TRUE(scene.ground) << seed;
+    const ToolSpec& tool = scene.tools.at(0);
+    EXPECT_EQ(tool.mass, 0) << seed;
+    const std::vector<TrajectorySpec::Waypoint>& points = tool.trajectory.waypoints;
+    ASSERT_GE(points.size(), 2u) << seed;
+    // The tool starts under the cloth, wholly, and waits there until the cloth has fallen onto it.
+    double top = -1e9, reach = 0;
+    const Pose start = poseOf(points[0].position, points[0].rotation);
+    for (const ToolPieceSpec& piece : tool.pieces) {
+      for (const Vec3& v : solidOf(piece).vertices) {
+        top = std::max(top, start.apply(piece.offset.apply(v)).y);
+        reach = std::max(reach, length(piece.offset.apply(v)));
+      }
+    }
+    const double cloth = scene.soft.centre.y;
+    EXPECT_LT(top, cloth) << seed;
+    EXPECT_EQ(points[1].position, points[0].position) << seed;
+    EXPECT_EQ(points[1].rotation, points[0].rotation) << seed;
+    const double gravity = length(scene.gravity);
+    EXPECT_GE(0.5 * gravity * points[1].time * points[1].time, cloth - points[0].position.y - reach) << seed;
+    // It lands within the run, and before the tool moves.
+    const double fallTime = std::sqrt(2 * (cloth - top) / gravity);
+    EXPECT_LT(fallTime, scene.duration) << seed;
+    EXPECT_LE(fallTime, points[1].time) << seed;
+    // Then it only lifts, its centre far enough above the ground for any turn.
+    for (std::size_t i = 1; i < points.size(); ++i) {
+      EXPECT_GE(points[i].position.y, points[i - 1].position.y) << seed;
+      moved += points[i].position != points[i - 1].position;
+    }
+    EXPECT_GE(points[0].position.y, reach + *scene.soft.margin + kDrapeGroundGap - 1e-12) << seed;
+  }
+  EXPECT_GT(draped, sheets * kDrapeChance / 2);
+  EXPECT_LT(draped, sheets * kDrapeChance * 1.5);
+  EXPECT_GT(moved, draped / 2);
 }
 
 TEST(SceneGenerator, SeedFilesSkipCommentsAndNameTheirBadLines) {
