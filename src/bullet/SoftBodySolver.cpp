@@ -777,6 +777,13 @@ void SoftBodySolverImpl::beginLastWord() {
   m_dynamicToolsActive = false;
   for (Tool* tool : m_configuration.tools()) {
     tool->state().lastWord = LastWordDiagnostics{};
+    // The pose-matching frames this step's prediction repaired, of the bodies the tool is at.
+    for (const auto& pair : tool->state().pairs) {
+      const SoftBodyCache* cache = pair->live ? findCache(*pair->softBody) : nullptr;
+      if (cache == nullptr || cache->frameRepairStep != m_step) continue;
+      ++tool->state().lastWord.poseFramesRepaired;
+      tool->state().lastWord.nonFiniteWrites += cache->frameNonFiniteWrites;
+    }
     if (tool->state().options.separation.enabled && isFinite(toPose(tool->body().getWorldTransform()))) {
       tools.push_back(tool);
       m_dynamicToolsActive = m_dynamicToolsActive || bool(reactingBody(tool->state()));
@@ -951,6 +958,7 @@ void SoftBodySolverImpl::predictMotion(btScalar timeStep) {
     SoftBodyCache* cache = findCache(softBody);
     if (cache == nullptr || cache->boundStep != m_step || softBody.m_worldInfo == nullptr) {
       softBody.predictMotion(timeStep);
+      if (cache != nullptr) keepPoseFrame(softBody, *cache);
       continue;
     }
     // Bullet's own bound on a node's change of velocity from its forces in one step
@@ -963,6 +971,7 @@ void SoftBodySolverImpl::predictMotion(btScalar timeStep) {
     maxDisplacement = btMin(userMaxDisplacement, limited);
     softBody.predictMotion(timeStep);
     maxDisplacement = userMaxDisplacement;
+    keepPoseFrame(softBody, *cache);
     if (!(limited < userMaxDisplacement)) continue;
     // The forces that needed the bound may act again in the next step (the pressure of a body
     // squeezed flat): it stays while a node is predicted as fast as it allows.
@@ -974,6 +983,77 @@ void SoftBodySolverImpl::predictMotion(btScalar timeStep) {
       }
     }
   }
+}
+
+void SoftBodySolverImpl::keepPoseFrame(btSoftBody& softBody, SoftBodyCache& cache) {
+  // Bullet's pose matching (btSoftBody::predictMotion: updatePose, then every free node pulled kMT
+  // of the way to its place in the body's frame) takes the frame's rotation from
+  // btPolarDecomposition, which returns a matrix that is no rotation when its iteration does not
+  // converge, on a nearly singular Apq = Σ w·(x − com) ⊗ rest offset. A flat body's rest offsets
+  // lie in a plane, so its Apq is singular but for Bullet's epsilon, and folded it may defeat the
+  // iteration: a free cloth folded over jaws (generated seed 1766 with --bullet-kinds) got a
+  // frame with entries of 5,000 (determinant 1e11), and the match sent nodes 390 m in one step.
+  // Where the frame is not a rotation, the match is made again from the prediction (m_q + m_v·dt,
+  // as Bullet computed it) with the rotation nearest Apq that the iteration of Müller et al. 2016
+  // ("A robust method to extract the rotational part of deformations") reaches from the last good
+  // frame: a rotation at every iteration, however singular Apq is. A reflection (determinant −1)
+  // is left as Bullet found it: a flat body's reflection through its own plane is the same shape.
+  btSoftBody::Pose& pose = softBody.m_pose;
+  if (!pose.m_bframe || !(softBody.m_cfg.kMT > 0) || pose.m_pos.size() != softBody.m_nodes.size() ||
+      pose.m_wgh.size() != softBody.m_nodes.size()) {
+    return;
+  }
+  const btMatrix3x3& frame = pose.m_rot;
+  const btMatrix3x3 square = frame * frame.transpose();
+  bool orthonormal = true;
+  for (int i = 0; i < 3 && orthonormal; ++i) {
+    for (int j = 0; j < 3 && orthonormal; ++j) {
+      orthonormal = btFabs(square[i][j] - btScalar(i == j ? 1 : 0)) < kFrameTolerance;
+    }
+  }
+  if (orthonormal) {
+    cache.poseFrame = frame;
+    return;
+  }
+  const btScalar dt = softBody.m_sst.sdt;
+  btMatrix3x3 apq(0, 0, 0, 0, 0, 0, 0, 0, 0);
+  for (int i = 0; i < softBody.m_nodes.size(); ++i) {
+    const btSoftBody::Node& node = softBody.m_nodes[i];
+    const btVector3 a = pose.m_wgh[i] * (node.m_q + node.m_v * dt - pose.m_com);
+    const btVector3& b = pose.m_pos[i];
+    apq[0] += a.x() * b;
+    apq[1] += a.y() * b;
+    apq[2] += a.z() * b;
+  }
+  btQuaternion turn;
+  cache.poseFrame.getRotation(turn);
+  for (int iteration = 0; iteration < kFrameIterations; ++iteration) {
+    const btMatrix3x3 r(turn);
+    btVector3 torque(0, 0, 0);
+    btScalar alignment = 0;
+    for (int c = 0; c < 3; ++c) {
+      torque += r.getColumn(c).cross(apq.getColumn(c));
+      alignment += r.getColumn(c).dot(apq.getColumn(c));
+    }
+    const btVector3 omega = torque / (btFabs(alignment) + btScalar(1e-9));
+    const btScalar angle = omega.length();
+    if (!(angle > btScalar(1e-9))) break;
+    turn = (btQuaternion(omega / angle, angle) * turn).normalized();
+  }
+  const btMatrix3x3 repaired(turn);
+  Index nonFinite = 0;
+  for (int i = 0; i < softBody.m_nodes.size(); ++i) {
+    btSoftBody::Node& node = softBody.m_nodes[i];
+    if (!(node.m_im > 0)) continue;
+    const btVector3 before = node.m_x;
+    const btVector3 predicted = node.m_q + node.m_v * dt;
+    node.m_x = predicted + (repaired * pose.m_pos[i] + pose.m_com - predicted) * softBody.m_cfg.kMT;
+    detail::checkWrite(before, node.m_x, nonFinite);
+  }
+  pose.m_rot = repaired;
+  cache.poseFrame = repaired;
+  cache.frameRepairStep = m_step;
+  cache.frameNonFiniteWrites = nonFinite;
 }
 
 void SoftBodySolverImpl::recordPressureSpeeds(btSoftBody& softBody, bool guarded, double fastest) {

@@ -177,7 +177,14 @@ class SoftBodySolverImpl {
     bool motionSolved = false;
     std::vector<Index> changed;
     std::vector<unsigned char> isChanged;
+    // Bullet's pose-matching frame (btSoftBody::Pose::m_rot) at the latest prediction that found
+    // one, or that repairFrame made; and the step in which it was last repaired.
+    btMatrix3x3 poseFrame = btMatrix3x3::getIdentity();
+    int frameRepairStep = -1;
+    Index frameNonFiniteWrites = 0;  // in that repair
   };
+  // Bullet's pose matching with a frame that is a rotation (see the definition).
+  void keepPoseFrame(btSoftBody& softBody, SoftBodyCache& cache);
   SoftBodyCache& cacheOf(const btSoftBody& softBody);
   SoftBodyCache* findCache(const btSoftBody& softBody);  // nullptr: none yet
   // The stage on the gathered patch, run again with the faces of the nodes it moved until none is
@@ -261,6 +268,11 @@ class SoftBodySolverImpl {
   // measure (or bound): the measure visits every face, and the gather's work grows with the reach.
   static constexpr Real kReachGrowth = 2;
   static constexpr int kMostPasses = 4;
+  // A pose-matching frame is a rotation when R·Rᵀ is the identity within this, entry by entry
+  // (btPolarDecomposition's converged frames are within 1e-6, its failures off by thousands); the
+  // rotation that replaces one that is not takes at most this many of Müller's iterations.
+  static constexpr btScalar kFrameTolerance = btScalar(1e-2);
+  static constexpr int kFrameIterations = 32;
   // A bound on one step's work only: the patch grows until no moved node has a face outside it,
   // one ring of faces an extension, and a patch that only grows ends by itself. A cascade of faces
   // pushed into a plate by their neighbours' moves took more than four extensions (generated

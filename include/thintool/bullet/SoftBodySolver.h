@@ -24,7 +24,10 @@
 /// (m_collisionDisabledObjects) are left alone. Last, the energy guard (EnergyGuardSettings)
 /// bounds the velocities of each soft body a tool's response moved in the step (and, in the solve,
 /// its nodes' moves), and, in Bullet's prediction of the next step, what that body's forces add to
-/// them. Tool::report() says what the stages did and what they left (ToolDiagnostics::lastWord).
+/// them. In the prediction of a pose-matched body a tool is at, a frame that Bullet's polar
+/// decomposition failed to make a rotation (a flat body folded) is replaced by the nearest rotation
+/// before the match (LastWordDiagnostics::poseFramesRepaired). Tool::report() says what the stages
+/// did and what they left (ToolDiagnostics::lastWord).
 
 #include <thintool/core/Api.h>
 

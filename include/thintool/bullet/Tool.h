@@ -66,8 +66,13 @@ struct LastWordDiagnostics {
   /// tool or another body's contact held them too, and the solver's move of the node does not say
   /// which took what.
   Index holdNodesShared = 0;
-  /// The stage's and the energy guard's writes into Bullet's state that left a finite value not
-  /// finite (ToolDiagnostics::nonFiniteWrites).
+  /// Soft bodies near the tool whose pose-matching frame (btSoftBody::Pose::m_rot, kMT > 0) Bullet's
+  /// prediction of this step computed as no rotation, and thintool::SoftBodySolver replaced with
+  /// the nearest rotation before the match: a flat body folded over a tool, whose frame Bullet's
+  /// polar decomposition cannot find.
+  Index poseFramesRepaired = 0;
+  /// The stage's, the energy guard's and the frames' repair's writes into Bullet's state that left
+  /// a finite value not finite (ToolDiagnostics::nonFiniteWrites).
   Index nonFiniteWrites = 0;
   /// Soft nodes left inside the tool or soft faces left pierced by it after the stage: the
   /// invariant, expected 0.
