@@ -315,6 +315,15 @@ void GroundTruth::start(const std::vector<Pose>& toolPoses, const std::vector<Ve
   m_samples = 0;
 }
 
+void GroundTruth::addNodes(const std::vector<Vec3>& nodes) {
+  if (nodes.size() < m_previousNodes.size()) throw Error("ground truth: the soft body lost nodes");
+  for (std::size_t i = m_previousNodes.size(); i < nodes.size(); ++i) {
+    m_previousNodes.push_back(nodes[i]);
+    m_crossedPiece.push_back(-1);
+    m_sideBeforeCrossing.push_back(0);
+  }
+}
+
 void GroundTruth::measurePenetration(const Vec3& world, const std::vector<Pose>& poses) {
   double depth = 0;
   for (std::size_t k = 0; k < m_pieces.size(); ++k) {

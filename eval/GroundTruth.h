@@ -163,6 +163,10 @@ class GroundTruth {
              std::vector<int> pinned = {});
   const GroundTruthStep& update(const std::vector<Pose>& toolPoses, const std::vector<Vec3>& nodes,
                                 const std::vector<Triangle>& faces);
+  /// Nodes the soft body gained between two steps, as a cut gains them (Bullet's
+  /// btSoftBody::cutLink appends them): followed from where they are now. nodes: every node, the
+  /// ones it had first, as they were at the last update. Throws when it has fewer.
+  void addNodes(const std::vector<Vec3>& nodes);
   const GroundTruthStep& lastStep() const { return m_step; }
   GroundTruthRun run() const;
 

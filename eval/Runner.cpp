@@ -211,6 +211,30 @@ double fastestNodeSpeed(const std::vector<Vec3>& before, const std::vector<Vec3>
   return fastest;
 }
 
+// Cuts the slit (SoftBodySpec::Cut) through the body as it is now; returns how many links it cut.
+int cutSheet(btSoftBody& soft, const SoftBodySpec::Cut& cut) {
+  const Vec3 across = normalizedOrZero(cross(cut.direction, Vec3{0, 1, 0}));
+  // The links to cut, by their nodes' indices: each cut appends nodes and links.
+  std::vector<std::array<int, 2>> ends;
+  std::vector<double> shares;  // where along each the plane crosses it
+  for (int i = 0; i < soft.m_links.size(); ++i) {
+    const btSoftBody::Link& link = soft.m_links[i];
+    const Vec3 a = toVec3(link.m_n[0]->m_x);
+    const Vec3 b = toVec3(link.m_n[1]->m_x);
+    const double da = dot(a - cut.point, across);
+    const double db = dot(b - cut.point, across);
+    if (!(da * db < 0)) continue;
+    const double share = da / (da - db);
+    const Vec3 crossing = a + (b - a) * share;
+    if (!(std::abs(dot(crossing - cut.point, cut.direction)) <= cut.halfLength)) continue;
+    ends.push_back({int(link.m_n[0] - &soft.m_nodes[0]), int(link.m_n[1] - &soft.m_nodes[0])});
+    shares.push_back(share);
+  }
+  int count = 0;
+  for (std::size_t k = 0; k < ends.size(); ++k) count += soft.cutLink(ends[k][0], ends[k][1], btScalar(shares[k])) ? 1 : 0;
+  return count;
+}
+
 }  // namespace
 
 RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
@@ -391,7 +415,7 @@ RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
   result.settleNodeSpeed = settleNodeSpeed;
   for (Tool* tool : w.thinTools) result.toolNodes += tool != nullptr ? int(tool->nodeCount()) : 0;
 
-  const std::vector<Triangle> faces = scenes::faceIndices(soft);
+  std::vector<Triangle> faces = scenes::faceIndices(soft);
   GroundTruth truth(std::move(pieces), scene.soft.mesh != SoftBodySpec::Mesh::Sheet);
   // The dynamic tools have moved in the step above: the ground truth starts from where they are.
   for (std::size_t t = 0; t < scene.tools.size(); ++t) {
@@ -407,8 +431,16 @@ RunResult runScene(const SceneSpec& scene, const RunOptions& options) {
   const int steps = std::max(1, int(std::lround(scene.duration / scene.timeStep)));
   double wall = 0;
   double toolTime = 0;
+  bool cut = false;
   for (int i = 1; i <= steps; ++i) {
     const double time = i * scene.timeStep;
+    if (scene.soft.cut && !cut && time > scene.soft.cut->time) {
+      result.linksCut = cutSheet(soft, *scene.soft.cut);
+      faces = scenes::faceIndices(soft);
+      previousNodes = nodesOf(soft);
+      truth.addNodes(previousNodes);
+      cut = true;
+    }
     const std::vector<Pose> posesBefore = toolPoses;
     for (std::size_t t = 0; t < scene.tools.size(); ++t) {
       if (scene.tools[t].mass > 0) continue;  // dynamic: moves by itself

@@ -39,6 +39,7 @@ struct RunResult {
   int softNodes = 0;
   int softFaces = 0;
   int toolNodes = 0;             ///< ThinTool's sample nodes over all tools (0 for stock)
+  int linksCut = 0;              ///< by the scene's cut (SoftBodySpec::cut), each adding two nodes
   GroundTruthRun truth;
   double microsecondsPerStep = 0;
   double toolMicrosecondsPerStep = 0;

@@ -52,6 +52,17 @@ struct SoftBodySpec {
   double sheetSize = 1;     ///< m, side (also the tetra box's edge)
   int nodesPerSide = 17;
   bool pinnedCorners = true;  ///< false: a free cloth. Not read from scene files (the scene generator sets it)
+  /// Sheet: a slit cut through it during the run, as Bullet's demos cut cloth: every link whose
+  /// nodes lie either side of the vertical plane along `direction` through `point`, and that
+  /// crosses it within halfLength of point, is cut there (btSoftBody::cutLink, which adds two nodes
+  /// a link and splits its faces). Not read from scene files (the scene generator sets it).
+  struct Cut {
+    double time = 0;           ///< s after t = 0, before the step that ends after it
+    Vec3 point;                ///< m; its height is not used
+    Vec3 direction{1, 0, 0};   ///< along the slit, horizontal, unit
+    double halfLength = 0.5;   ///< m
+  };
+  std::optional<Cut> cut;
   // Tetra: a closed box of tetrahedra, edge sheetSize, resting where centre puts it: tetraCells
   // cubes a side, six tetrahedra each, built by btSoftBodyHelpers::CreateFromTetGenData; its
   // surface is the tetrahedra's outer faces, and its links their edges. Not read from scene files

@@ -484,6 +484,18 @@ SceneSpec generateScene(std::uint64_t seed, const std::string& sceneFolder, cons
   if (options.bulletKinds && sheet && kinds.chance(kDrapeChance)) {
     drapeOverTool(scene, tool, toolTop, reach, speed, turnPerStep, stepCap, kinds);
   }
+  // Not a pose-matched sheet: Bullet's cut appends nodes without their rest offsets and weights,
+  // and its pose matching then reads past the end of those arrays (btSoftBody::updatePose).
+  if (options.bulletKinds && sheet && kinds.chance(kCutChance) && soft.poseMatching == 0) {
+    SoftBodySpec::Cut cut;
+    cut.time = kinds.uniform(0.2, 0.8) * scene.duration;
+    cut.point = soft.centre + Vec3{kinds.uniform(-0.25, 0.25) * soft.sheetSize, 0,
+                                   kinds.uniform(-0.25, 0.25) * soft.sheetSize};
+    const double angle = kinds.uniform(0, kPi);
+    cut.direction = {std::cos(angle), 0, std::sin(angle)};
+    cut.halfLength = kinds.uniform(kMinCutShare, kMaxCutShare) * soft.sheetSize / 2;
+    soft.cut = cut;
+  }
   scene.tools.push_back(std::move(tool));
   return scene;
 }
@@ -505,6 +517,9 @@ std::string describeScene(const SceneSpec& scene) {
       text += "sheet " + std::to_string(soft.nodesPerSide) + "x" + std::to_string(soft.nodesPerSide) + " nodes " +
               fixed(soft.sheetSize, 2) + " m at y " + fixed(soft.centre.y, 2) + " m" + (soft.pinnedCorners ? "" : " free") +
               (scene.ground ? "" : " no ground");
+      if (soft.cut) {
+        text += ", cut " + fixed(2 * soft.cut->halfLength, 2) + " m long at " + fixed(soft.cut->time, 3) + " s";
+      }
       break;
     case SoftBodySpec::Mesh::Tetra:
       text += "tetra box " + std::to_string(soft.tetraCells) + "^3 cells " + fixed(soft.sheetSize, 2) + " m";

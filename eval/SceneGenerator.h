@@ -171,12 +171,21 @@ inline constexpr double kMaxPoseMatching = 0.5;
 /// kDrapeGroundGap above the ground, whichever way it turns.
 inline constexpr double kDrapeChance = 0.4;
 inline constexpr double kDrapeGroundGap = 0.05;  ///< m
+/// Cut cloth, as Bullet's demos cut it: in this share of the sheet scenes (pinned or draped) a slit
+/// is cut through the sheet at a time between 20 and 80 % of the run (SoftBodySpec::Cut): through a
+/// point of its middle half, at any horizontal angle, as long as these shares of its side (beyond
+/// one, it may part the sheet in two). Never a pose-matched sheet: Bullet's btSoftBody::cutLink
+/// appends nodes but not their pose's rest offsets and weights, which its pose matching then reads
+/// past the end of.
+inline constexpr double kCutChance = 0.3;
+inline constexpr double kMinCutShare = 0.2;
+inline constexpr double kMaxCutShare = 1.5;
 
 }  // namespace generated
 
 struct GeneratorOptions {
   /// Also draw Bullet's own kinds that the scenes above leave out: round tools, pose-matched
-  /// bodies and draped cloth (the constants above). The rest of each seed's scene stays what it is without them:
+  /// bodies, draped cloth and cut cloth (the constants above). The rest of each seed's scene stays what it is without them:
   /// their draws come from a stream of their own.
   bool bulletKinds = false;
 };

@@ -52,9 +52,9 @@ inside the soft body, pierced faces, penetration deeper than 0.1 mm, non-finite 
                      mass-spring body (springs tied to its node mass and the step), Bullet's
                      implicit solve and rigid contacts, ThinTool's last word after it
   --bullet-kinds     also draw Bullet's own kinds the scenes otherwise leave out: round tools (a
-                     ball, a capsule, a box and a ball), pose-matched bodies (kMT) and free cloth
-                     dropped on a tool that waits under it; the rest of each seed's scene is the
-                     same as without it
+                     ball, a capsule, a box and a ball), pose-matched bodies (kMT), free cloth
+                     dropped on a tool that waits under it, and cloth cut during the run; the rest
+                     of each seed's scene is the same as without it
   --within-thickness judge only the scenes in which every tool moved less than its own thickness in
                      every step (the narrowest width of its thinnest piece); the rest run, and are
                      counted apart
@@ -234,6 +234,7 @@ int main(int argc, char** argv) {
       verdict = runAndJudge(scene, options, &run);
       if (verbose) printSteps(run);
       if (verbose) std::printf("the farthest step of a tool, over its thickness: %.4g\n", run.peakToolStepOverThickness);
+      if (verbose && scene.soft.cut) std::printf("the cut cut %d links\n", run.linksCut);
       if (withinThickness && !(run.peakToolStepOverThickness < 1)) {
         ++tooFast;
         continue;

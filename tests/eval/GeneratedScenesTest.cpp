@@ -135,7 +135,8 @@ TEST(GeneratedScenes, Seeds289To300InTheDeformableWorld) {
   deformable.world = scenes::WorldKind::Deformable;
   expectNoFailures(block(kFirstDeformableSeed, kLastBlockSeed), deformable);
 }
-// Bullet's own kinds (GeneratorOptions::bulletKinds): round tools and pose-matched bodies.
+// Bullet's own kinds (GeneratorOptions::bulletKinds): round tools, pose-matched bodies, draped
+// and cut cloth.
 constexpr std::uint64_t kLastBulletKindsSeed = 50;
 TEST(GeneratedScenes, Seeds1To50WithBulletKinds) {
   expectNoFailures(block(1, kLastBulletKindsSeed), {}, withBulletKinds());
@@ -346,6 +347,14 @@ TEST(GeneratedScenesEverywhere, RunCleanly) {
     const Outcome outcome = runSeed(seed);
     EXPECT_FALSE(outcome.verdict.nonFinite || outcome.verdict.refused)
         << "seed " << seed << ": " << joinReasons(outcome.verdict) << "\n  reproduce: " << reproduce(seed);
+  }
+  // With Bullet's kinds: cloth dropped on a needle, a pinned sheet cut under jaws, a free cloth cut
+  // on a plate (its nodes and faces added mid-run).
+  for (std::uint64_t seed : {6, 36, 175}) {
+    const Outcome outcome = runSeed(seed, {}, withBulletKinds());
+    EXPECT_FALSE(outcome.verdict.nonFinite || outcome.verdict.refused)
+        << "seed " << seed << ": " << joinReasons(outcome.verdict)
+        << "\n  reproduce: " << reproduce(seed, {}, withBulletKinds());
   }
 }
 

@@ -110,6 +110,21 @@ TEST(GroundTruth, ANodeThatCrossedAndCameBackIsNotStillCrossed) {
   EXPECT_EQ(run.stillCrossed, 0);
 }
 
+TEST(GroundTruth, NodesACutAddsAreFollowedFromWhereTheyAppear) {
+  GroundTruth truth = plateTruth();
+  truth.start({at(0, 1, 0)}, {{0.1, 0.5, 0.1}}, {});
+  truth.update({at(0, 0.9, 0)}, {{0.1, 0.5, 0.1}}, {});
+  EXPECT_THROW(truth.update({at(0, 0.8, 0)}, {{0.1, 0.5, 0.1}, {0.2, 0.5, 0}}, {}), Error);
+  // A node appears under the plate; the plate then passes through it and through the first.
+  truth.addNodes({{0.1, 0.5, 0.1}, {0.2, 0.5, 0}});
+  const GroundTruthStep& step = truth.update({at(0, 0.2, 0)}, {{0.1, 0.5, 0.1}, {0.2, 0.5, 0}}, {});
+  EXPECT_EQ(step.crossings, 2);
+  // A node that appears below the plate, which it has passed, has not crossed it.
+  truth.addNodes({{0.1, 0.5, 0.1}, {0.2, 0.5, 0}, {0, 0.3, 0}});
+  EXPECT_EQ(truth.update({at(0, 0.1, 0)}, {{0.1, 0.5, 0.1}, {0.2, 0.5, 0}, {0, 0.3, 0}}, {}).crossings, 0);
+  EXPECT_THROW(truth.addNodes({{0.1, 0.5, 0.1}}), Error);
+}
+
 // Two nodes the plate passes through in its second step; the first is pinned.
 GroundTruthRun passOverAPinnedNode(bool immovablePlate) {
   std::vector<GroundTruthPiece> pieces;

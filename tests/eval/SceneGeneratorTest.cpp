@@ -183,7 +183,7 @@ std::string withoutPoseMatching(std::string text) {
   return text;
 }
 
-TEST(SceneGenerator, BulletKindsChangeOnlyTheToolAndThePoseMatching) {
+TEST(SceneGenerator, BulletKindsLeaveTheRestOfEachSceneAsItWas) {
   GeneratorOptions kindsOn;
   kindsOn.bulletKinds = true;
   std::set<std::string> roundTools;
@@ -200,8 +200,10 @@ TEST(SceneGenerator, BulletKindsChangeOnlyTheToolAndThePoseMatching) {
     }
     const ToolSpec& tool = kinds.tools.at(0);
     if (tool.name == plain.tools.at(0).name) {
-      // The same tool: the same scene, down to the path, but for the pose matching.
-      EXPECT_EQ(withoutPoseMatching(describeScene(kinds)), describeScene(plain)) << seed;
+      // The same tool: the same scene, down to the path, but for the pose matching and a cut.
+      SceneSpec uncut = kinds;
+      uncut.soft.cut.reset();
+      EXPECT_EQ(withoutPoseMatching(describeScene(uncut)), describeScene(plain)) << seed;
       continue;
     }
     roundTools.insert(tool.name);
@@ -274,6 +276,33 @@ TEST(SceneGenerator, DrapedClothFallsOnAToolThatWaitsUnderIt) {
   EXPECT_GT(draped, sheets * kDrapeChance / 2);
   EXPECT_LT(draped, sheets * kDrapeChance * 1.5);
   EXPECT_GT(moved, draped / 2);
+}
+
+TEST(SceneGenerator, CutClothIsASheetThatIsNotPoseMatchedCutThroughItsMiddle) {
+  GeneratorOptions kindsOn;
+  kindsOn.bulletKinds = true;
+  int cut = 0, candidates = 0, drapedAndCut = 0;
+  for (std::uint64_t seed = 1; seed <= 1000; ++seed) {
+    EXPECT_FALSE(generateScene(seed, kScenes).soft.cut) << seed;
+    const SceneSpec scene = generateScene(seed, kScenes, kindsOn);
+    const SoftBodySpec& soft = scene.soft;
+    candidates += soft.mesh == SoftBodySpec::Mesh::Sheet && soft.poseMatching == 0;
+    if (!soft.cut) continue;
+    ++cut;
+    drapedAndCut += !soft.pinnedCorners;
+    EXPECT_EQ(soft.mesh, SoftBodySpec::Mesh::Sheet) << seed;
+    EXPECT_EQ(soft.poseMatching, 0) << seed;
+    expectWithin(soft.cut->time, 0.2 * scene.duration, 0.8 * scene.duration, "cut time", seed);
+    expectWithin(soft.cut->halfLength, kMinCutShare * soft.sheetSize / 2, kMaxCutShare * soft.sheetSize / 2,
+                 "cut half length", seed);
+    EXPECT_NEAR(length(soft.cut->direction), 1, 1e-12) << seed;
+    EXPECT_EQ(soft.cut->direction.y, 0) << seed;
+    expectWithin(std::abs(soft.cut->point.x - soft.centre.x), 0, soft.sheetSize / 4, "cut point x", seed);
+    expectWithin(std::abs(soft.cut->point.z - soft.centre.z), 0, soft.sheetSize / 4, "cut point z", seed);
+  }
+  EXPECT_GT(cut, candidates * kCutChance / 2);
+  EXPECT_LT(cut, candidates * kCutChance * 1.5);
+  EXPECT_GT(drapedAndCut, 0);
 }
 
 TEST(SceneGenerator, SeedFilesSkipCommentsAndNameTheirBadLines) {
