@@ -1012,7 +1012,8 @@ void SoftBodySolverImpl::keepPoseFrame(btSoftBody& softBody, SoftBodyCache& cach
     }
   }
   if (orthonormal) {
-    cache.poseFrame = frame;
+    // The start of the next repair's iteration, a rotation: a reflection R gives −R.
+    cache.poseFrame = frame.determinant() > 0 ? frame : frame.scaled(btVector3(-1, -1, -1));
     return;
   }
   const btScalar dt = softBody.m_sst.sdt;
@@ -1027,6 +1028,7 @@ void SoftBodySolverImpl::keepPoseFrame(btSoftBody& softBody, SoftBodyCache& cach
   }
   btQuaternion turn;
   cache.poseFrame.getRotation(turn);
+  turn.normalize();
   for (int iteration = 0; iteration < kFrameIterations; ++iteration) {
     const btMatrix3x3 r(turn);
     btVector3 torque(0, 0, 0);
