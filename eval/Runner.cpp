@@ -214,9 +214,13 @@ double fastestNodeSpeed(const std::vector<Vec3>& before, const std::vector<Vec3>
 // Cuts the slit (SoftBodySpec::Cut) through the body as it is now; returns how many links it cut.
 int cutSheet(btSoftBody& soft, const SoftBodySpec::Cut& cut) {
   const Vec3 across = normalizedOrZero(cross(cut.direction, Vec3{0, 1, 0}));
-  // The links to cut, by their nodes' indices: each cut appends nodes and links.
-  std::vector<std::array<int, 2>> ends;
-  std::vector<double> shares;  // where along each the plane crosses it
+  // The links to cut, by their nodes' indices (each cut appends nodes and links), and where along
+  // each the plane crosses it.
+  struct Crossing {
+    int from, to;
+    double share;
+  };
+  std::vector<Crossing> crossings;
   for (int i = 0; i < soft.m_links.size(); ++i) {
     const btSoftBody::Link& link = soft.m_links[i];
     const Vec3 a = toVec3(link.m_n[0]->m_x);
@@ -227,11 +231,10 @@ int cutSheet(btSoftBody& soft, const SoftBodySpec::Cut& cut) {
     const double share = da / (da - db);
     const Vec3 crossing = a + (b - a) * share;
     if (!(std::abs(dot(crossing - cut.point, cut.direction)) <= cut.halfLength)) continue;
-    ends.push_back({int(link.m_n[0] - &soft.m_nodes[0]), int(link.m_n[1] - &soft.m_nodes[0])});
-    shares.push_back(share);
+    crossings.push_back({int(link.m_n[0] - &soft.m_nodes[0]), int(link.m_n[1] - &soft.m_nodes[0]), share});
   }
   int count = 0;
-  for (std::size_t k = 0; k < ends.size(); ++k) count += soft.cutLink(ends[k][0], ends[k][1], btScalar(shares[k])) ? 1 : 0;
+  for (const Crossing& c : crossings) count += soft.cutLink(c.from, c.to, btScalar(c.share)) ? 1 : 0;
   return count;
 }
 

@@ -269,8 +269,8 @@ void drapeOverTool(SceneSpec& scene, ToolSpec& tool, double toolTop, double reac
   const double fallTime = stepCap * dt / 3;
   const double drop =
       std::min(*soft.margin + draw.logUniform(kMinClearance, kMaxClearance), 0.5 * gravity * fallTime * fallTime);
-  const double lowest = reach + *soft.margin + kDrapeGroundGap;
-  soft.centre.y = std::max(soft.centre.y, lowest + toolTop + drop);
+  const double lowestCentre = reach + *soft.margin + kDrapeGroundGap;  // the tool's, whichever way it turns
+  soft.centre.y = std::max(soft.centre.y, lowestCentre + toolTop + drop);
   const double side = soft.sheetSize;
   const Vec3 rest{draw.uniform(-0.25, 0.25) * side, soft.centre.y - drop - toolTop, draw.uniform(-0.25, 0.25) * side};
 

@@ -185,8 +185,8 @@ inline constexpr double kMaxCutShare = 1.5;
 
 struct GeneratorOptions {
   /// Also draw Bullet's own kinds that the scenes above leave out: round tools, pose-matched
-  /// bodies, draped cloth and cut cloth (the constants above). The rest of each seed's scene stays what it is without them:
-  /// their draws come from a stream of their own.
+  /// bodies, draped cloth and cut cloth (the constants above). The rest of each seed's scene stays
+  /// what it is without them: their draws come from a stream of their own.
   bool bulletKinds = false;
 };
 

@@ -178,7 +178,7 @@ class SoftBodySolverImpl {
     std::vector<Index> changed;
     std::vector<unsigned char> isChanged;
     // Bullet's pose-matching frame (btSoftBody::Pose::m_rot) at the latest prediction that found
-    // one, or that repairFrame made; and the step in which it was last repaired.
+    // one, or that keepPoseFrame made (a rotation either way); and the step it last repaired.
     btMatrix3x3 poseFrame = btMatrix3x3::getIdentity();
     int frameRepairStep = -1;
     Index frameNonFiniteWrites = 0;  // in that repair
