@@ -278,6 +278,14 @@ TEST(GeneratedScenes, TheEnergyGuardWatchesStepsInWhichOnlyTheHoldsAct) {
   for (const std::uint64_t seed : {12115u, 12468u, 13958u}) expectPasses(seed, "--friction", withFriction);
 }
 
+// Light dynamic jaws (0.1 kg) thrown at 23.5 m/s into a pinned sheet, with friction, spin up to
+// 128 rad/s in 1/35 s steps, far past the 45° a step Bullet turns a body: the stop at a pinned node
+// slows the spin to what Bullet integrates before it acts, and the jaws stay off the sheet's pinned
+// corner, which they crossed while the stop's impulses went into a spin that changed nothing (8609).
+TEST(GeneratedScenes, APinnedNodeStopsLightJawsSpinningFasterThanBulletTurnsThem) {
+  expectPasses(8609, "--friction", withFriction);
+}
+
 // The paper's discrete detection (with the last word and the energy guard) on scenes in which
 // every tool moves less than its own thickness a step, where the guard's speed bound grew by its
 // factor step after step from speeds it had itself allowed: a pressure ball's node pulled across a
