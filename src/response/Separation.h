@@ -64,6 +64,7 @@
 ///   further than twice the path of the piece's farthest-going corner in the step. What is still
 ///   violated then is counted, never hidden.
 
+#include "tool/PieceMotion.h"
 #include "tool/ToolModel.h"
 
 #include <thintool/response/ResponseTypes.h>
@@ -138,38 +139,6 @@ struct SeparationPatch {
     faceMet.clear();
     inCluster.clear();
   }
-};
-
-/// How a piece moves during the step. The body that carries it goes from its pose at the start to
-/// its pose at the end, its origin in a straight line and its turn about one fixed axis; the piece
-/// rides on it at inBody, so a piece off the body's origin (a jaw) swings round that origin as
-/// the body turns. samples() keeps each sample's turn under the settings' largest.
-class PieceMotion {
- public:
-  PieceMotion(const Pose& bodyStart, const Pose& bodyEnd, Real maxTurnPerSample, const Pose& inBody = Pose{});
-  /// The same motion read along the chord alone: one sample, so that a node or face that the
-  /// straight path in the piece's frame takes through goes back, whatever the arc says. For a
-  /// piece that ended inside a closed body it was outside of at the start, the arc reading is the
-  /// wrong one.
-  PieceMotion alongChord() const;
-  /// The piece's pose at fraction t of the step.
-  Pose at(Real t) const;
-  int samples() const { return m_samples; }
-  const Pose& start() const { return m_start; }
-  const Pose& end() const { return m_end; }
-  Real turn() const { return m_angle; }
-  /// The body's pose at the start: the piece turns round its origin.
-  const Pose& bodyStart() const { return m_bodyStart; }
-
- private:
-  Pose m_bodyStart;
-  Pose m_bodyEnd;
-  Pose m_inBody;
-  Pose m_start;  // the piece's
-  Pose m_end;
-  Vec3 m_axis{1, 0, 0};  // in the body's start frame
-  Real m_angle = 0;
-  int m_samples = 1;
 };
 
 /// Another piece near the one the stage separates from (the other jaw, another tool), where it
