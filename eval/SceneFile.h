@@ -166,6 +166,7 @@ struct SceneSpec {
   bool energyGuard = true;     ///< ThinTool: the energy guard after the soft solver (ToolOptions::energyGuard); "paper" and "ray-only" never have it
   bool boundForces = true;     ///< ThinTool: with the energy guard, the bound on the forces in the step after a guarded one (EnergyGuardSettings::boundForcesNextStep)
   bool scanFaces = false;      ///< ThinTool: swept detection reads every soft face instead of walking a face tree (BulletSettings::scanFaces)
+  bool followArc = false;      ///< ThinTool: swept detection confirms a node's chord on the turning tool's arc (ToolOptions::sweptFollowsArc)
 };
 
 /// An override applied to the file's JSON before it is read: path=value, the path in dots and

@@ -44,6 +44,8 @@ inside the soft body, pierced faces, penetration deeper than 0.1 mm, non-finite 
                      (EnergyGuardSettings::boundForcesNextStep)
   --scan-faces       swept detection reads every soft face instead of walking a face tree
                      (BulletSettings::scanFaces)
+  --follow-arc       swept detection confirms a node's chord on a turning tool's arc
+                     (ToolOptions::sweptFollowsArc)
   --friction         ThinTool's friction on, with stock Bullet's coefficient: the soft body's kDF
                      times the tool's friction (FrictionSettings, BulletSettings::frictionFromBodies)
   --soft-multibody   build each scene in btSoftMultiBodyDynamicsWorld (PyBullet's soft world)
@@ -126,6 +128,7 @@ int main(int argc, char** argv) {
   bool energyGuard = true;
   bool boundForces = true;
   bool scanFaces = false;
+  bool followArc = false;
   bool friction = false;
   bool softMultiBody = false;
   bool deformable = false;
@@ -165,6 +168,8 @@ int main(int argc, char** argv) {
         boundForces = false;
       } else if (arg == "--scan-faces") {
         scanFaces = true;
+      } else if (arg == "--follow-arc") {
+        followArc = true;
       } else if (arg == "--friction") {
         friction = true;
       } else if (arg == "--soft-multibody") {
@@ -215,6 +220,7 @@ int main(int argc, char** argv) {
       scene.energyGuard = energyGuard;
       scene.boundForces = boundForces;
       scene.scanFaces = scanFaces;
+      scene.followArc = followArc;
       if (friction) {
         scene.friction = true;
         scene.frictionFromBodies = true;
@@ -253,11 +259,11 @@ int main(int argc, char** argv) {
     energy += verdict.energy;
     refused += verdict.refused;
     const std::string reach = holdReach.has_value() ? " --hold-reach " + formatNumber(*holdReach) : "";
-    std::printf("seed %llu failed: %s; reproduce: %s --seed %llu --algorithm %s%s%s%s%s%s%s%s%s%s%s%s --verbose\n",
+    std::printf("seed %llu failed: %s; reproduce: %s --seed %llu --algorithm %s%s%s%s%s%s%s%s%s%s%s%s%s --verbose\n",
                 static_cast<unsigned long long>(seed), joinReasons(verdict).c_str(), argv[0],
                 static_cast<unsigned long long>(seed), algorithmKey(algorithm), lastWord ? "" : " --no-last-word",
                 holds ? "" : " --no-holds", reach.c_str(), energyGuard ? "" : " --no-energy-guard",
-                boundForces ? "" : " --no-force-bound", scanFaces ? " --scan-faces" : "",
+                boundForces ? "" : " --no-force-bound", scanFaces ? " --scan-faces" : "", followArc ? " --follow-arc" : "",
                 friction ? " --friction" : "", softMultiBody ? " --soft-multibody" : "",
                 deformable ? " --deformable" : "", generatorOptions.bulletKinds ? " --bullet-kinds" : "",
                 withinThickness ? " --within-thickness" : "");

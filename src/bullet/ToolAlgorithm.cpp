@@ -230,10 +230,14 @@ struct ToolAlgorithm::PieceStep {
   Real skin = 0;      ///< what the pair keeps this step (pairSkin), at most fullSkin (m)
   Index facesWalked = 0;  ///< soft faces the gather's walk met
   Real skinGrowthSpeed = 0;  ///< ToolOptions::skinGrowthSpeed (m/s)
+  Pose inBody{};             ///< the piece on its body (Tool::pieceTransform)
+  Real maxTurnPerSample = 0;  ///< a swept piece's arc in samples of this turn (rad); 0: the chord
   Clock::time_point start{};
 
   // What the core's stages read of the step.
-  StepContext context() const { return {model, previousPose, pose, Real(timeStep), skin, skinGrowthSpeed}; }
+  StepContext context() const {
+    return {model, previousPose, pose, Real(timeStep), skin, skinGrowthSpeed, inBody, maxTurnPerSample};
+  }
 };
 
 void ToolAlgorithm::processCollision(const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1,
@@ -265,6 +269,10 @@ void ToolAlgorithm::processCollision(const btCollisionObjectWrapper* body0, cons
     PieceStep step{m_tool.state().pairState(softBody, piece), softBody, toolBody, m_tool.state().pieces[piece],
                    bodyBefore * m_tool.pieceTransform(piece), bodyNow * m_tool.pieceTransform(piece)};
     step.swept = true;
+    step.inBody = m_tool.pieceTransform(piece);
+    if (m_tool.state().options.sweptFollowsArc) {
+      step.maxTurnPerSample = m_tool.state().options.separation.maxTurnPerSample;
+    }
     processPiece(step, toolWrap);
   }
   if (DynamicBody dynamicBody = m_tool.state().dynamic()) {

@@ -59,6 +59,10 @@ struct Sweep {
   SideMemory& memory;
   const std::vector<Vec3>& start;
   const std::vector<Vec3>& end;
+  /// The piece's poses along its arc, start and end included, when it turns farther in the step
+  /// than one sample: arcSamples + 1 of them; 1 reads the chord alone.
+  const Pose* arc;
+  int arcSamples;
   std::vector<PatchContact>& out;
   DetectionCounters& counters;
 
@@ -108,6 +112,13 @@ struct Sweep {
     if (!clip.hit && solverEntry == kInvalidIndex) {
       return;
     }
+    // Under a turn the chord of the node's path, seen from the piece, can cut through it where the
+    // arc never went: a node beside a ball spinning in place. One that ends outside went in only if
+    // its arc did too.
+    if (solverEntry == kInvalidIndex && arcSamples > 1 && outsideDistance(model.planes, end[v]) > skin &&
+        !arcEnters(v)) {
+      return;
+    }
     ++counters.candidates;
     const Index id = patch.nodeIds[v];
     // The solver pushed it in (or through): it goes back the way it came, wherever it is now.
@@ -123,6 +134,20 @@ struct Sweep {
     const Plane& face = model.planes[plane];
     emit(ContactKind::SoftNode, &v, 1, {1, 0, 0}, face.normal * face.offset, face.normal, clip.enter, kInvalidIndex,
          plane, kInvalidIndex);
+  }
+
+  // Whether soft node v's path, its world motion straight and the piece on its arc, meets the piece
+  // grown by the skin in some sample of the arc.
+  bool arcEnters(Index v) const {
+    const Vec3& from = patch.previousPositions[v];
+    const Vec3& to = patch.positions[v];
+    Vec3 previous = start[v];
+    for (int k = 1; k <= arcSamples; ++k) {
+      const Vec3 current = k == arcSamples ? end[v] : arc[k].applyInverse(from + (to - from) * (Real(k) / arcSamples));
+      if (clipSegmentConvex(model.planes, skin, previous, current).hit) return true;
+      previous = current;
+    }
+    return false;
   }
 
   // A soft face's motion, read once for all the tool points near it.
@@ -309,8 +334,11 @@ void detectSwept(const StepContext& step, const SoftPatch& patch, SideMemory& me
   const Real size = length(model.bounds.extent());
   // The projection onto a face admits barycentric coordinates down to -kOverlapTolerance.
   const Real tolerance = kOverlapTolerance * size;
-  Sweep sweep{model,  pose,         patch,      skin,        kOnSurface * size, tolerance,
-              memory, work.m_start, work.m_end, outContacts, outCounters};
+  const PieceMotion arcMotion = step.motion();
+  Pose arc[PieceMotion::kMostSamples + 1];
+  for (int k = 0; k <= arcMotion.samples(); ++k) arc[k] = arcMotion.at(Real(k) / Real(arcMotion.samples()));
+  Sweep sweep{model,        pose,       patch, skin,                kOnSurface * size, tolerance, memory,
+              work.m_start, work.m_end, arc,   arcMotion.samples(), outContacts,       outCounters};
 
   // Soft nodes against the solid.
   const Aabb grownTool = model.bounds.expanded(skin);

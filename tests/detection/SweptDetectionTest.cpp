@@ -94,5 +94,33 @@ TEST_F(OneFace, ANodeTheSolverSlidAlongTheGrownEndWithinRoundingDidNotEnter) {
   EXPECT_GT(entered[0].normal.y, 0.99);
 }
 
+// A box 20 cm across that turns 164° in the step about its centre, and a soft node at rest 26 cm
+// from that centre, beyond every corner. Seen from the box the node moves along an arc that never
+// comes near it, and along the arc's chord, which passes 3.6 cm from the centre, through the box.
+// Reading the chord, detection pushes the node out of a box it never met; following the arc it
+// leaves it alone.
+TEST(SweptDetection, ANodeBesideASpinningToolIsLeftAloneWhenTheArcIsFollowed) {
+  const ToolModel box = buildToolModel(makeBoxMesh({0.1, 0.1, 0.1}), ToolModelSettings());
+  const Real turn = 164 * kPi / 180;
+  Pose turned;
+  turned.rotation = rotationAboutAxis({0, 0, 1}, turn);
+  const Vec3 node = rotationAboutAxis({0, 0, 1}, turn / 2) * Vec3{0.26, 0, 0};
+  SoftPatch patch;
+  patch.positions = {node};
+  patch.previousPositions = {node};
+  patch.inverseMasses = {1};
+  patch.nodeIds = {0};
+  const auto contactsWith = [&](Real maxTurnPerSample) {
+    SideMemory memory;
+    memory.resize(1, 0);
+    SweptWorkspace work;
+    DetectionResult result;
+    detectSwept({box, Pose{}, turned, 0.01, 0.01, 1, Pose{}, maxTurnPerSample}, patch, memory, work, result);
+    return result.contacts.size();
+  };
+  EXPECT_EQ(contactsWith(0), 1U) << "the chord passes through the box";
+  EXPECT_EQ(contactsWith(5 * kPi / 180), 0U);
+}
+
 }  // namespace
 }  // namespace thintool

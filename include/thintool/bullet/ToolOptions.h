@@ -140,6 +140,12 @@ struct ToolOptions {
   /// tool moving farther than its thickness per step never passes through. Off, the paper's
   /// discrete rays and checks run at the end of the step only, as in the paper.
   bool swept = true;
+  /// Swept detection reads a turning tool's motion in the step as the chord of its arc. On, a soft
+  /// node whose chord passes through the tool but which ends outside it is taken only if its path
+  /// along the arc (sampled every separation.maxTurnPerSample) enters the tool too: for a tool that
+  /// spins in place, a burr or a round tool, whose chord reading pushes away nodes it never touched.
+  /// Off by default (docs/results/generated-scenes.md: what it changes on the generated scenes).
+  bool sweptFollowsArc = false;
   /// The paper's filters; used by the discrete detection only (swept detection knows each
   /// contact's side from the motion).
   FilterSettings filters;
