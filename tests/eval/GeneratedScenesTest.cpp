@@ -286,6 +286,21 @@ TEST(GeneratedScenes, APinnedNodeStopsLightJawsSpinningFasterThanBulletTurnsThem
   expectPasses(8609, "--friction", withFriction);
 }
 
+// A kinematic ball 477 mm across spinning 164° a step beside a pinned sheet, with Bullet's kinds
+// drawn: read along the chord of each node's arc, which cuts through the ball, detection flings
+// nodes the ball never touched and one crosses it (2592, open with the defaults); following the
+// arc (ToolOptions::sweptFollowsArc) it leaves them alone. So, too, under a plate turning 116° a
+// step through a cut sheet (3440, nodes at 3,860 m/s with the defaults).
+TEST(GeneratedScenes, DetectionThatFollowsTheArcFlingsNothingBesideASpinningTool) {
+  for (const std::uint64_t seed : {2592u, 3440u}) {
+    SceneSpec scene = generateScene(seed, kScenes, withBulletKinds());
+    scene.followArc = true;
+    const Verdict verdict = runAndJudge(scene);
+    EXPECT_FALSE(verdict.failed) << "seed " << seed << ": " << joinReasons(verdict)
+                                 << "\n  reproduce: " << reproduce(seed, {}, withBulletKinds()) << " --follow-arc";
+  }
+}
+
 // The paper's discrete detection (with the last word and the energy guard) on scenes in which
 // every tool moves less than its own thickness a step, where the guard's speed bound grew by its
 // factor step after step from speeds it had itself allowed: a pressure ball's node pulled across a
