@@ -82,17 +82,6 @@ btScalar stopShortOfPinnedNode(btRigidBody& tool, const ToolModel& piece, const 
       pendingAngular += tool.computeGyroscopicImpulseImplicit_Body(step);
     }
   }
-  // Bullet turns a body by at most ANGULAR_MOTION_THRESHOLD (45°) in a step, however fast it spins
-  // (btTransformUtil::integrateTransform): past that a change of its angular velocity leaves its
-  // motion as it was, and the impulses below, which take the motion of the tool's point at the node
-  // as linear in the velocities, cannot stop it. A 0.1 kg pair of jaws spinning at 128 rad/s in
-  // 1/35 s steps passed a sheet's pinned corner so (generated seed 8609 with friction). The spin is
-  // cut to what Bullet integrates, which moves the tool as before.
-  const btScalar spin = (tool.getAngularVelocity() + pendingAngular).length() * step;
-  if (spin > ANGULAR_MOTION_THRESHOLD && std::isfinite(spin)) {
-    tool.setAngularVelocity((tool.getAngularVelocity() + pendingAngular) * (ANGULAR_MOTION_THRESHOLD / spin) -
-                            pendingAngular);
-  }
   // The speculative contact: the point's closing speed along the nearest face's normal now, the
   // pending forces' share included, at most the gap over the step.
   Index plane = 0;

@@ -278,14 +278,6 @@ TEST(GeneratedScenes, TheEnergyGuardWatchesStepsInWhichOnlyTheHoldsAct) {
   for (const std::uint64_t seed : {12115u, 12468u, 13958u}) expectPasses(seed, "--friction", withFriction);
 }
 
-// Light dynamic jaws (0.1 kg) thrown at 23.5 m/s into a pinned sheet, with friction, spin up to
-// 128 rad/s in 1/35 s steps, far past the 45° a step Bullet turns a body: the stop at a pinned node
-// slows the spin to what Bullet integrates before it acts, and the jaws stay off the sheet's pinned
-// corner, which they crossed while the stop's impulses went into a spin that changed nothing (8609).
-TEST(GeneratedScenes, APinnedNodeStopsLightJawsSpinningFasterThanBulletTurnsThem) {
-  expectPasses(8609, "--friction", withFriction);
-}
-
 // A kinematic ball 477 mm across spinning 164° a step beside a pinned sheet, with Bullet's kinds
 // drawn: read along the chord of each node's arc, which cuts through the ball, detection flings
 // nodes the ball never touched and one crosses it (2592, open with the defaults); following the
