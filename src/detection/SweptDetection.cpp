@@ -334,11 +334,16 @@ void detectSwept(const StepContext& step, const SoftPatch& patch, SideMemory& me
   const Real size = length(model.bounds.extent());
   // The projection onto a face admits barycentric coordinates down to -kOverlapTolerance.
   const Real tolerance = kOverlapTolerance * size;
-  const PieceMotion arcMotion = step.motion();
-  Pose arc[PieceMotion::kMostSamples + 1];
-  for (int k = 0; k <= arcMotion.samples(); ++k) arc[k] = arcMotion.at(Real(k) / Real(arcMotion.samples()));
-  Sweep sweep{model,        pose,       patch, skin,                kOnSurface * size, tolerance, memory,
-              work.m_start, work.m_end, arc,   arcMotion.samples(), outContacts,       outCounters};
+  // The arc only where detection follows it: reading the chord, nothing of it is needed.
+  int arcSamples = 1;
+  if (step.maxTurnPerSample > 0) {
+    const PieceMotion arc = step.motion();
+    work.m_arc.resize(PieceMotion::kMostSamples + 1);
+    arc.samplePoses(work.m_arc.data());
+    arcSamples = arc.samples();
+  }
+  Sweep sweep{model,        pose,       patch,              skin,       kOnSurface * size, tolerance, memory,
+              work.m_start, work.m_end, work.m_arc.data(), arcSamples, outContacts,       outCounters};
 
   // Soft nodes against the solid.
   const Aabb grownTool = model.bounds.expanded(skin);

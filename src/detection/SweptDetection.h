@@ -86,6 +86,7 @@ class SweptWorkspace {
   std::vector<Vec3> m_start;  ///< patch vertices at the start of the step, in the tool's previous frame
   std::vector<Vec3> m_end;    ///< at the end, in its current frame
   std::vector<std::uint8_t> m_valid;
+  std::vector<Pose> m_arc;  ///< the piece along its arc, when detection follows it (StepContext)
 };
 
 /// Finds the contacts of the tool piece moving from the context's previousPose to its pose against

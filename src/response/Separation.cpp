@@ -20,12 +20,6 @@ namespace {
 constexpr Real kTurnedAway = Real(0.5);
 constexpr int kMostSamples = PieceMotion::kMostSamples;
 
-// The piece's pose at each sample of its motion, start and end included: poses holds
-// kMostSamples + 1.
-void samplePoses(const PieceMotion& motion, Pose* poses) {
-  for (int k = 0; k <= motion.samples(); ++k) poses[k] = motion.at(Real(k) / Real(motion.samples()));
-}
-
 struct NodeVerdict {
   bool fix = false;
   Index plane = kInvalidIndex;  // the face the node goes back in front of
@@ -981,7 +975,7 @@ SeparationCounts separateFromPiece(const ToolModel& piece, const PieceMotion& mo
   const Pose& end = motion.end();
   const Pose& start = motion.start();
   Pose poses[kMostSamples + 1];
-  samplePoses(motion, poses);
+  motion.samplePoses(poses);
   const Aabb near = piece.bounds.expanded(clearance);
   const Real travel = farthestPath(piece, motion, poses);
 
@@ -1075,7 +1069,7 @@ SeparationCounts separateFromPiece(const ToolModel& piece, const PieceMotion& mo
 SeparationCounts carryMeetingFaces(const ToolModel& piece, const PieceMotion& motion,
                                    const SeparationSettings& settings, SeparationPatch& patch) {
   Pose poses[kMostSamples + 1];
-  samplePoses(motion, poses);
+  motion.samplePoses(poses);
   SeparationCounts counts = carryAndCount(piece, motion, settings, true, false, noOthers, patch);
   // Another piece's last pass may have pushed a node through this one after this one's passes had
   // judged it: it ends outside, carried through by both readings, and no face of it meets the piece
@@ -1118,7 +1112,7 @@ SeparationCounts keepNodesOutside(const ToolModel& piece, const PieceMotion& mot
   SeparationCounts counts;
   THINTOOL_ASSERT(patch.consistent());
   Pose poses[kMostSamples + 1];
-  samplePoses(motion, poses);
+  motion.samplePoses(poses);
   for (Index v = 0; v < patch.vertexCount(); ++v) {
     if (!(patch.inverseMasses[v] > 0)) continue;
     if (putNodeOutside(piece, motion, poses, settings.clearance, v, patch).fix) ++counts.nodesMoved;
@@ -1131,7 +1125,7 @@ SeparationCounts keepNodesOutside(const ToolModel& piece, const PieceMotion& mot
 SeparationCounts carryCrossedFaces(const ToolModel& piece, const PieceMotion& motion,
                                    const SeparationSettings& settings, SeparationPatch& patch) {
   Pose poses[kMostSamples + 1];
-  samplePoses(motion, poses);
+  motion.samplePoses(poses);
   const auto crossed = [&](std::size_t f) {
     const std::array<Index, 3>& face = patch.faces[f];
     if (motion.samples() > 1) return !keptItsSideAlongArc(piece, motion, poses, patch, face);

@@ -61,4 +61,8 @@ Pose PieceMotion::at(Real t) const {
   return body * m_inBody;
 }
 
+void PieceMotion::samplePoses(Pose* out) const {
+  for (int k = 0; k <= m_samples; ++k) out[k] = at(Real(k) / Real(m_samples));
+}
+
 }  // namespace thintool

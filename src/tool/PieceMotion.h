@@ -27,6 +27,9 @@ class PieceMotion {
   PieceMotion alongChord() const;
   /// The piece's pose at fraction t of the step.
   Pose at(Real t) const;
+  /// The piece's pose at each sample of the arc, start and end included: samples() + 1 of them
+  /// into out, which holds at least kMostSamples + 1.
+  void samplePoses(Pose* out) const;
   int samples() const { return m_samples; }
   const Pose& start() const { return m_start; }
   const Pose& end() const { return m_end; }
