@@ -7,6 +7,9 @@
 #include <thintool/bullet/CollisionConfiguration.h>
 #include <thintool/bullet/Convert.h>
 
+#include <cmath>
+#include <limits>
+
 namespace thintool {
 namespace {
 
@@ -44,6 +47,19 @@ long long dropNonFinite(btAlignedObjectArray<Contact>& contacts) {
   return dropped;
 }
 
+// The impulse a rigid contact of Bullet's solve applied to its rigid body or multibody link over the
+// step. The contact keeps the velocity change its impulses gave the soft side, m_c5 (the soft
+// side's inverse mass there) times each impulse, summed with the sign reversed in
+// m_total_normal_dv and m_total_tangent_dv (btDeformableRigidContactConstraint::solveConstraint),
+// so the impulses sum to -m_c5⁻¹ times that change. A contact whose soft side cannot move (m_c5
+// singular: pinned nodes) applied none.
+btVector3 impulseOnRigid(const btDeformableRigidContactConstraint& constraint) {
+  const btMatrix3x3& inverseMass = constraint.m_contact->m_c5;
+  const btScalar determinant = inverseMass.determinant();
+  if (!(std::abs(determinant) > std::numeric_limits<btScalar>::min())) return btVector3(0, 0, 0);
+  return -(inverseMass.inverse() * (constraint.m_total_normal_dv + constraint.m_total_tangent_dv));
+}
+
 }  // namespace
 
 DeformableBodySolver::DeformableBodySolver(CollisionConfiguration& configuration)
@@ -61,6 +77,24 @@ void DeformableBodySolver::applyTransforms(btScalar timeStep) {
   m_impl->rememberStarts();
   btDeformableBodySolver::applyTransforms(timeStep);
   m_impl->lastWordAfterTransforms();
+  // What the tools carried in Bullet's solve, its contacts' impulses, adds to what the last word's
+  // moves put on them (ToolStepReport::holdWrench).
+  if (m_configuration.tools().empty() || m_objective == nullptr) return;
+  const btDeformableContactProjection& projection = m_objective->m_projection;
+  for (int s = 0; s < projection.m_nodeRigidConstraints.size(); ++s) {
+    for (int c = 0; c < projection.m_nodeRigidConstraints[s].size(); ++c) {
+      const btDeformableNodeRigidContactConstraint& constraint = projection.m_nodeRigidConstraints[s][c];
+      m_impl->addSolverImpulse(*constraint.m_contact->m_cti.m_colObj, impulseOnRigid(constraint), constraint.m_node->m_x,
+                               timeStep);
+    }
+  }
+  for (int s = 0; s < projection.m_faceRigidConstraints.size(); ++s) {
+    for (int c = 0; c < projection.m_faceRigidConstraints[s].size(); ++c) {
+      const btDeformableFaceRigidContactConstraint& constraint = projection.m_faceRigidConstraints[s][c];
+      m_impl->addSolverImpulse(*constraint.m_contact->m_cti.m_colObj, impulseOnRigid(constraint),
+                               constraint.getContact()->m_contactPoint, timeStep);
+    }
+  }
 }
 
 void DeformableBodySolver::setConstraints(const btContactSolverInfo& infoGlobal) {

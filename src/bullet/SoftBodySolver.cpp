@@ -711,6 +711,16 @@ void SoftBodySolverImpl::lastWordAfterTransforms() {
   endLastWord();
 }
 
+void SoftBodySolverImpl::addSolverImpulse(const btCollisionObject& object, const btVector3& impulse,
+                                          const btVector3& point, btScalar timeStep) {
+  Tool* tool = m_configuration.findTool(object);
+  if (tool == nullptr || !(timeStep > 0)) return;
+  const Vec3 force = toVec3(impulse) / Real(timeStep);
+  if (!isFinite(force) || !isFinite(toVec3(point))) return;
+  tool->state().holdWrench.force += force;
+  tool->state().holdWrench.torque += cross(toVec3(point), force);
+}
+
 double SoftBodySolverImpl::deformableSpeedBound(const btSoftBody& body, double startFastest) const {
   // The bound of the energy guard on node speed (EnergyGuardSettings::speedFactor), without the
   // prediction the classic solver gives: speedFactor times the fastest of the guarding tools'

@@ -48,6 +48,10 @@ class SoftBodySolverImpl {
   void rememberSpeeds();  // before Bullet's predictMotion: the fastest node of each body
   void rememberStarts();
   void lastWordAfterTransforms();
+  /// Adds to the hold wrench of the tool whose body is object, if any, an impulse Bullet's solve
+  /// applied to it at point over a step of timeStep (s): the deformable world's contacts.
+  void addSolverImpulse(const btCollisionObject& object, const btVector3& impulse, const btVector3& point,
+                        btScalar timeStep);
 
  private:
   // The energy guard's measures of one soft body in this step (EnergyGuardSettings).

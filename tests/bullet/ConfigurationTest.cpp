@@ -406,5 +406,38 @@ TEST(Configuration, TheDeformableSolverDropsContactsThatAreNotFinite) {
   }
 }
 
+// In the deformable world a tool carries what Bullet's contacts apply to it: a ball resting on a
+// ground box registered as a tool loads it with its weight, as the ball's momentum balance says
+// (m g - dp/dt, which alternates step by step with the ball's contacts), within 5 % over a second.
+TEST(Configuration, TheDeformableWorldsContactsLoadTheToolWithWhatTheyCarry) {
+  CollisionConfiguration configuration;
+  DeformableBodySolver solver(configuration);
+  DeformableBallOnGround scene(configuration, solver, true);
+  const btSoftBody& ball = *scene.ball;
+  const auto momentum = [&] {
+    double p = 0;
+    for (int i = 0; i < ball.m_nodes.size(); ++i) p += double(ball.m_nodes[i].m_v.y()) / double(ball.m_nodes[i].m_im);
+    return p;
+  };
+  scene.step(420);
+  constexpr int kSteps = 60;
+  const double weight = 10 * 1.0;  // g·m: the scene's 10 m/s² and 1 kg
+  double carried = 0;
+  double balance = 0;
+  double before = momentum();
+  for (int i = 0; i < kSteps; ++i) {
+    scene.step(1);
+    const ToolStepReport& report = scene.tool->report();
+    carried += -report.holdWrench.force.y / kSteps;
+    const double now = momentum();
+    balance += (weight + (now - before) * 60) / kSteps;
+    before = now;
+    EXPECT_EQ(report.diagnostics.lastWord.violations(), 0u);
+  }
+  EXPECT_NEAR(balance, weight, 0.05 * weight) << "the ball rests";
+  EXPECT_NEAR(carried, balance, 0.05 * balance);
+}
+
 }  // namespace
 }  // namespace thintool
+

@@ -24,7 +24,10 @@
 /// times the faster of the tools' fastest corner and restingSpeed, or than the body's fastest node
 /// at the start of the step: the guard's speed bound, without its energy bound or its bound on the
 /// next step's forces. The contacts inside the solve stay Bullet's (ToolDiagnostics::stockPairs
-/// counts those pairs as deformableWorld), and there are no holds in the solve.
+/// counts those pairs as deformableWorld), and there are no holds in the solve. What those contacts
+/// applied to a tool's body over the step (each keeps the velocity change its impulses gave the soft
+/// side, m_c5 times each impulse, in m_total_normal_dv and m_total_tangent_dv) is the tool's load,
+/// with the last word's velocity changes: ToolStepReport::holdWrench.
 ///
 /// With a tool registered, the solver also drops each of Bullet's rigid contacts that its detection
 /// gave a value that is not finite, before the solve reads them (droppedContacts counts them): in

@@ -153,7 +153,9 @@ struct ToolStepReport {
   /// the tool: the impulses Bullet's contact stage applied through the tool's holds
   /// (BulletSettings::holdInSolver), and the velocity changes of the nodes the last word moved,
   /// over the step. Most of a grasped body's weight reaches a jaw this way, not through wrench.
-  /// Measured in a world whose soft-body solver is a thintool::SoftBodySolver; zero elsewhere.
+  /// Measured in a world whose soft-body solver is a thintool::SoftBodySolver; in the deformable
+  /// world, with thintool::DeformableBodySolver, the impulses of Bullet's own rigid contacts on the
+  /// tool and the last word's velocity changes; zero elsewhere.
   Wrench holdWrench;
   /// Force (N) and torque about the tool body's origin (N·m) of the impulses ThinTool applied to a
   /// dynamic tool in the step (the moved nodes' reactions, its holds' push after the soft solve,
