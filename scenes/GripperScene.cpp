@@ -5,16 +5,17 @@
 #include "Metrics.h"
 #include "SoftBallScene.h"
 #include "TetraBlock.h"
+#include "WorldKind.h"
 
+#include <thintool/core/Error.h>
 #include <thintool/thintool.h>
 
 #include <BulletDynamics/Featherstone/btMultiBody.h>
-#include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>
+#include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
 #include <BulletDynamics/Featherstone/btMultiBodyJointMotor.h>
 #include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
-#include <BulletSoftBody/btDefaultSoftBodySolver.h>
 #include <BulletSoftBody/btSoftBodyRigidBodyCollisionConfiguration.h>
-#include <BulletSoftBody/btSoftMultiBodyDynamicsWorld.h>
+#include <BulletSoftBody/btSoftBody.h>
 #include <btBulletDynamicsCommon.h>
 
 #include <algorithm>
@@ -44,27 +45,29 @@ struct GripperWorld {
   std::unique_ptr<btCollisionConfiguration> configuration;
   std::unique_ptr<btCollisionDispatcher> dispatcher;
   btDbvtBroadphase broadphase;
-  btMultiBodyConstraintSolver solver;
   std::unique_ptr<btSoftBodySolver> softSolver;
-  std::unique_ptr<btSoftMultiBodyDynamicsWorld> world;
+  std::unique_ptr<SoftWorldOfKind> world;
 
-  explicit GripperWorld(bool thinTool) {
+  GripperWorld(WorldKind kind, bool thinTool) {
+    if (kind == WorldKind::SoftRigid) throw Error("runGripper: the gripper is a multibody; pick a world that takes one");
+    CollisionConfiguration* ours = nullptr;
     if (thinTool) {
-      auto ours = std::make_unique<CollisionConfiguration>();
-      softSolver = std::make_unique<SoftBodySolver>(*ours);
-      configuration = std::move(ours);
+      auto configurationOfOurs = std::make_unique<CollisionConfiguration>();
+      ours = configurationOfOurs.get();
+      configuration = std::move(configurationOfOurs);
     } else {
       configuration = std::make_unique<btSoftBodyRigidBodyCollisionConfiguration>();
-      softSolver = std::make_unique<btDefaultSoftBodySolver>();
     }
+    softSolver = softSolverFor(kind, ours);
     dispatcher = std::make_unique<btCollisionDispatcher>(configuration.get());
-    world = std::make_unique<btSoftMultiBodyDynamicsWorld>(dispatcher.get(), &broadphase, &solver,
-                                                           configuration.get(), softSolver.get());
-    const btVector3 gravity(0, -btScalar(kGravity), 0);
-    world->setGravity(gravity);
-    world->getWorldInfo().m_gravity = gravity;
-    world->getWorldInfo().m_sparsesdf.Initialize();
+    world = std::make_unique<SoftWorldOfKind>(kind, *dispatcher, broadphase, *configuration, *softSolver);
+    world->setGravity(btVector3(0, -btScalar(kGravity), 0));
+    // The deformable world keeps the finer voxels it sets itself.
+    if (kind == WorldKind::SoftMultiBody) world->worldInfo().m_sparsesdf.Initialize();
   }
+  ~GripperWorld() { world.reset(); }  // before the parts it was made with
+  GripperWorld(const GripperWorld&) = delete;
+  GripperWorld& operator=(const GripperWorld&) = delete;
 };
 
 // The gripper: a fixed base; link 0, the lift, slides up; links 1 and 2, the fingers, slide
@@ -76,9 +79,9 @@ struct Gripper {
   std::unique_ptr<btMultiBodyLinkCollider> carriage;  // Bullet solves a link's motor in its collider's island
   std::array<std::unique_ptr<btMultiBodyLinkCollider>, 2> fingers;
   std::array<std::unique_ptr<btMultiBodyJointMotor>, 3> motors;
-  btSoftMultiBodyDynamicsWorld& world;
+  btMultiBodyDynamicsWorld& world;
 
-  Gripper(btSoftMultiBodyDynamicsWorld& w, double gripForce, double timeStep) : world(w) {
+  Gripper(btMultiBodyDynamicsWorld& w, double gripForce, double timeStep) : world(w) {
     body.setBasePos(btVector3(0, btScalar(kBaseHeight), 0));
     const btVector3 carriageInertia = btVector3(1, 1, 1) * btScalar(kCarriageMass * 0.01);
     body.setupPrismatic(0, btScalar(kCarriageMass), carriageInertia, -1, btQuaternion::getIdentity(),
@@ -150,7 +153,7 @@ struct Gripper {
   }
 };
 
-btSoftBody* makeBody(GraspedBody kind, btSoftBodyWorldInfo& info, double mass) {
+btSoftBody* makeBody(GraspedBody kind, btSoftBodyWorldInfo& info, double mass, double friction) {
   btSoftBody* body = nullptr;
   if (kind == GraspedBody::Cube) {
     body = createTetraBlock(info, Vec3{0, 0.1, 0}, Vec3{0.2, 0.2, 0.2}, {4, 4, 4});
@@ -159,7 +162,7 @@ btSoftBody* makeBody(GraspedBody kind, btSoftBodyWorldInfo& info, double mass) {
   }
   body->m_materials[0]->m_kLST = 0.8f;
   body->m_cfg.piterations = 10;
-  body->m_cfg.kDF = 0.5;
+  body->m_cfg.kDF = btScalar(friction);
   body->m_cfg.kDP = 0.01f;
   body->setTotalMass(btScalar(mass));
   body->getCollisionShape()->setMargin(0.01f);
@@ -186,14 +189,17 @@ bool finiteNodes(const btSoftBody& body) {
 const char* graspedBodyName(GraspedBody body) { return body == GraspedBody::Cube ? "cube" : "cable"; }
 
 GripperRun runGripper(const GripperSettings& settings) {
-  GripperWorld w(settings.thinTool);
-  btSoftMultiBodyDynamicsWorld& world = *w.world;
+  GripperWorld w(settings.world, settings.thinTool);
+  btMultiBodyDynamicsWorld& world = *w.world->multiBody();
   btBoxShape groundShape(btVector3(5, 0.5, 5));
   btRigidBody ground(btRigidBody::btRigidBodyConstructionInfo(0, nullptr, &groundShape));
   ground.setWorldTransform(btTransform(btQuaternion::getIdentity(), btVector3(0, -0.5, 0)));
   world.addRigidBody(&ground);
-  btSoftBody* body = makeBody(settings.body, world.getWorldInfo(), settings.bodyMass);
-  world.addSoftBody(body);
+  btSoftBody* body = makeBody(settings.body, w.world->worldInfo(), settings.bodyMass, settings.bodyFriction);
+  const bool deformable = settings.world == WorldKind::Deformable;
+  w.world->addSoftBody(body, deformable ? deformableSpringFor(*body, double(body->m_materials[0]->m_kLST),
+                                                              settings.timeStep)
+                                        : kDeformableSpring);
   Gripper gripper(world, settings.gripForce, settings.timeStep);
   std::array<Tool*, 2> tools{};
   if (settings.thinTool) {
@@ -260,7 +266,7 @@ GripperRun runGripper(const GripperSettings& settings) {
       for (Tool* tool : tools) {
         if (tool == nullptr) continue;
         const ToolStepReport& report = tool->report();
-        run.reportedLoad -= double(report.reaction.force.y);
+        run.reportedLoad -= double(deformable ? report.holdWrench.force.y : report.reaction.force.y);
       }
     }
     if (step == hold - 1) {
@@ -270,7 +276,7 @@ GripperRun runGripper(const GripperSettings& settings) {
     }
     lastMomentum = momentum;
     ++stepsTaken;
-    if (settings.observer && !settings.observer(world, tools, stepsTaken * dt)) break;
+    if (settings.observer && !settings.observer(world, w.world->softBodies(), tools, stepsTaken * dt)) break;
   }
   run.afterRelease = meanHeight(*body) - restHeight;
   const double loadDivisor = std::max(loadSteps, 1);
@@ -288,7 +294,7 @@ GripperRun runGripper(const GripperSettings& settings) {
   for (int f = 0; f < 2; ++f) {
     if (tools[f] != nullptr) removeTool(world, *gripper.fingers[f]);
   }
-  world.removeSoftBody(body);
+  w.world->removeSoftBody(body);
   delete body;
   world.removeRigidBody(&ground);
   return run;

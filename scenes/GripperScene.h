@@ -3,18 +3,21 @@
 #pragma once
 
 /// @file
-/// A robot's two-finger gripper grasping a soft body, in Bullet's btSoftMultiBodyDynamicsWorld:
-/// a Featherstone multibody whose fixed base carries a lift (a prismatic joint up) and on it two
+/// A robot's two-finger gripper grasping a soft body, in Bullet's btSoftMultiBodyDynamicsWorld or
+/// its deformable world (btDeformableMultiBodyDynamicsWorld, the body a mass-spring one there): a
+/// Featherstone multibody whose fixed base carries a lift (a prismatic joint up) and on it two
 /// fingers (prismatic joints across), each joint driven by a velocity motor of bounded force, as a
 /// robot's position-controlled joints are. The fingers close on a tetrahedral cube or cable lying on
 /// the ground, lift it, hold it still and let it go. Stock Bullet meets the fingers with its own
 /// soft–multibody contact; ThinTool registers each finger link as a tool, with friction.
 
+#include "WorldKind.h"
+
 #include <array>
 #include <functional>
 #include <string>
 
-class btSoftMultiBodyDynamicsWorld;
+class btCollisionWorld;
 
 namespace thintool {
 class Tool;
@@ -28,15 +31,24 @@ const char* graspedBodyName(GraspedBody body);
 struct GripperSettings {
   GraspedBody body = GraspedBody::Cube;
   bool thinTool = true;            ///< false: stock Bullet's configuration and soft-body solver
+  /// SoftMultiBody (PyBullet's soft world) or Deformable: there the body is a mass-spring body
+  /// whose springs are the tetrahedra's links (deformableSpringFor, at the classic material's kLST),
+  /// and the fingers meet Bullet's deformable contacts, with ThinTool's last word after its solve.
+  WorldKind world = WorldKind::SoftMultiBody;
   double timeStep = 1.0 / 240;     ///< s
   double gripForce = 50;           ///< N, each finger motor's largest force
   double squeeze = 0.01;           ///< m, how far each finger is driven into the body
   double liftHeight = 0.3;         ///< m
   double bodyMass = 0.5;           ///< kg
-  /// Called after every step with the world, the fingers' tools (null with stock Bullet) and the
-  /// time (s): a viewer's frame, say. Returning false ends the run there, and the run's figures
-  /// cover the steps taken (those of a phase not reached stay 0).
-  std::function<bool(const btSoftMultiBodyDynamicsWorld&, const std::array<Tool*, 2>&, double)> observer;
+  /// The body's kDF: with the fingers' friction (Bullet's default 0.5), the coefficient of
+  /// Bullet's contacts and of ThinTool's friction with the fingers (kDF × 0.5).
+  double bodyFriction = 0.5;
+  /// Called after every step with the world, its soft bodies, the fingers' tools (null with stock
+  /// Bullet) and the time (s): a viewer's frame, say. Returning false ends the run there, and the
+  /// run's figures cover the steps taken (those of a phase not reached stay 0).
+  std::function<bool(const btCollisionWorld&, const btAlignedObjectArray<btSoftBody*>&, const std::array<Tool*, 2>&,
+                     double)>
+      observer;
 };
 
 /// What the grasp did. Phases: settle 0.5 s, close 1.5 s, lift liftHeight at 0.2 m/s, hold 2 s,
@@ -52,7 +64,10 @@ struct GripperRun {
   double grip = 0;             ///< the finger motors' mean squeeze (N)
   double liftLoad = 0;         ///< what the lift motor carries beyond the gripper's own weight (N)
   double bodyLoad = 0;         ///< what the body's momentum says the fingers carry: m g − dp/dt (N)
-  double reportedLoad = 0;     ///< ThinTool only: the fingers' reports, −Σ (reaction + holdWrench)·y (N)
+  /// ThinTool only: what the fingers' reports say they carry (N), −Σ reaction·y: the impulses
+  /// ThinTool applied to them. In the deformable world Bullet's contacts apply theirs, and the
+  /// reports' holdWrench holds those with the last word's: −Σ holdWrench·y.
+  double reportedLoad = 0;
   bool finite = true;          ///< every node and joint finite at every step
   double wallMilliseconds = 0; ///< world steps, per step
 };

@@ -82,6 +82,17 @@ SoftWorldOfKind::~SoftWorldOfKind() {
   m_world.reset();  // before its solver and the forces
 }
 
+btMultiBodyDynamicsWorld* SoftWorldOfKind::multiBody() {
+  if (m_softMultiBody != nullptr) return m_softMultiBody;
+  return m_deformable;
+}
+
+const btAlignedObjectArray<btSoftBody*>& SoftWorldOfKind::softBodies() const {
+  if (m_softRigid != nullptr) return m_softRigid->getSoftBodyArray();
+  if (m_softMultiBody != nullptr) return m_softMultiBody->getSoftBodyArray();
+  return m_deformable->getSoftBodyArray();
+}
+
 btSoftBodyWorldInfo& SoftWorldOfKind::worldInfo() {
   if (m_softRigid != nullptr) return m_softRigid->getWorldInfo();
   if (m_softMultiBody != nullptr) return m_softMultiBody->getWorldInfo();
@@ -102,8 +113,10 @@ void SoftWorldOfKind::addSoftBody(btSoftBody* body, double springStiffness) {
   } else if (m_softMultiBody != nullptr) {
     m_softMultiBody->addSoftBody(body);
   } else {
-    // The deformable solver's own rigid contacts, on nodes and faces.
-    body->m_cfg.collisions = btSoftBody::fCollision::SDF_RD | btSoftBody::fCollision::SDF_RDF;
+    // The deformable solver's own rigid contacts: faces against rigid bodies (SDF_RDF) and
+    // multibody links (SDF_MDF), as Bullet's deformable grasp demo sets them.
+    body->m_cfg.collisions =
+        btSoftBody::fCollision::SDF_RD | btSoftBody::fCollision::SDF_RDF | btSoftBody::fCollision::SDF_MDF;
     m_deformable->addSoftBody(body);
     m_forces.push_back(std::make_unique<btDeformableMassSpringForce>(btScalar(springStiffness),
                                                                      btScalar(kDeformableSpringDamping), true));

@@ -11,12 +11,15 @@ class btConstraintSolver;
 class btDeformableLagrangianForce;
 class btDeformableMultiBodyDynamicsWorld;
 class btDiscreteDynamicsWorld;
+class btMultiBodyDynamicsWorld;
 class btDispatcher;
 class btSoftBody;
 class btSoftBodySolver;
 class btSoftMultiBodyDynamicsWorld;
 class btSoftRigidDynamicsWorld;
 class btVector3;
+template <typename T>
+class btAlignedObjectArray;
 struct btSoftBodyWorldInfo;
 
 namespace thintool {
@@ -64,6 +67,9 @@ class SoftWorldOfKind {
   btDiscreteDynamicsWorld& world() { return *m_world; }
   /// Null for the other kinds.
   btSoftRigidDynamicsWorld* softRigid() { return m_softRigid; }
+  /// The soft multibody or the deformable world, which take multibodies; null for the other kind.
+  btMultiBodyDynamicsWorld* multiBody();
+  const btAlignedObjectArray<btSoftBody*>& softBodies() const;
   btSoftBodyWorldInfo& worldInfo();
   /// The world's gravity, its soft bodies' (btSoftBodyWorldInfo::m_gravity) and, in the deformable
   /// world, that of the gravity forces it keeps.

@@ -2,7 +2,7 @@
 // Copyright (c) 2026 The ThinTool developers
 //
 // This example shows a robot's two-finger gripper, a Featherstone multibody in Bullet's soft
-// multibody world, closing on a soft tetrahedral cube and on a tetrahedral cable, lifting each,
+// multibody world (or, with --deformable, its deformable world), closing on a soft tetrahedral cube and on a tetrahedral cable, lifting each,
 // holding it and letting it go: stock Bullet's soft–multibody contact against ThinTool with each
 // finger link registered as a tool. Headless. One table: whether the body rose with the fingers,
 // how far it slipped, nodes through a finger (the evaluation suite's ground truth), the squeeze,
@@ -10,7 +10,8 @@
 // Where the viewer is built, --view shows one grasp (the cube, or --cable; ThinTool's, or --stock)
 // and --screenshot writes its frame at 4 s, lifted and held, to a PNG.
 //
-//   gripper_grasp [--dt SECONDS] [--grip NEWTONS] [--view | --screenshot FILE.png] [--cable] [--stock]
+//   gripper_grasp [--deformable] [--kdf KDF] [--dt SECONDS] [--grip NEWTONS] [--view | --screenshot FILE.png]
+//                 [--cable] [--stock]
 
 #include "GripperScene.h"
 
@@ -37,8 +38,8 @@ int view(GripperSettings settings, const std::string& screenshotPath) {
   if (!window) return 1;
   window->camera().target = btVector3(0, 0.3f, 0);
   window->camera().distance = 1.4f;
-  settings.observer = [&](const btSoftMultiBodyDynamicsWorld& world, const std::array<thintool::Tool*, 2>& fingers,
-                          double time) {
+  settings.observer = [&](const btCollisionWorld& world, const btAlignedObjectArray<btSoftBody*>& softBodies,
+                          const std::array<thintool::Tool*, 2>& fingers, double time) {
     thintool::viewer::Overlay overlay;
     for (thintool::Tool* finger : fingers) {
       if (finger != nullptr) overlay.tools.push_back(finger);
@@ -47,7 +48,7 @@ int view(GripperSettings settings, const std::string& screenshotPath) {
     std::snprintf(line, sizeof line, "%s, %s: t %.2f s", graspedBodyName(settings.body),
                   settings.thinTool ? "ThinTool" : "stock Bullet", time);
     overlay.panelLines.emplace_back(line);
-    return window->show(world, overlay, time);
+    return window->show(thintool::viewer::WorldView(world, softBodies), overlay, time);
   };
   runGripper(settings);
   return window->finish("gripper_grasp");
@@ -75,14 +76,18 @@ int main(int argc, char** argv) {
       base.body = GraspedBody::Cable;
     } else if (std::strcmp(argv[i], "--stock") == 0) {
       base.thinTool = false;
+    } else if (std::strcmp(argv[i], "--deformable") == 0) {
+      base.world = WorldKind::Deformable;
+    } else if (std::strcmp(argv[i], "--kdf") == 0 && hasValue) {
+      base.bodyFriction = std::atof(argv[++i]);
     } else {
-      std::fprintf(stderr, "usage: gripper_grasp [--dt SECONDS] [--grip NEWTONS] [--view | --screenshot FILE.png] "
-                           "[--cable] [--stock]\n");
+      std::fprintf(stderr, "usage: gripper_grasp [--deformable] [--kdf KDF] [--dt SECONDS] [--grip NEWTONS] "
+                           "[--view | --screenshot FILE.png] [--cable] [--stock]\n");
       return 2;
     }
   }
-  if (!(base.timeStep > 0 && base.timeStep <= 0.1) || !(base.gripForce > 0)) {
-    std::fprintf(stderr, "gripper_grasp: --dt must be in (0, 0.1] s and --grip above 0 N\n");
+  if (!(base.timeStep > 0 && base.timeStep <= 0.1) || !(base.gripForce > 0) || !(base.bodyFriction >= 0)) {
+    std::fprintf(stderr, "gripper_grasp: --dt must be in (0, 0.1] s, --grip above 0 N and --kdf at least 0\n");
     return 2;
   }
   if (viewing) {

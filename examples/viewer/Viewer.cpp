@@ -274,6 +274,9 @@ WorldView::WorldView(const btSoftMultiBodyDynamicsWorld& world)
 WorldView::WorldView(const btDeformableMultiBodyDynamicsWorld& world)
     : objects(world), softBodies(world.getSoftBodyArray()) {}
 
+WorldView::WorldView(const btCollisionWorld& world, const btAlignedObjectArray<btSoftBody*>& worldSoftBodies)
+    : objects(world), softBodies(worldSoftBodies) {}
+
 void Viewer::drawWorld(const WorldView& world, const Overlay& overlay) const {
   const int w = width(), h = height();
   glViewport(0, 0, w, h);

@@ -77,6 +77,7 @@ struct WorldView {
   WorldView(const btSoftRigidDynamicsWorld& world);
   WorldView(const btSoftMultiBodyDynamicsWorld& world);
   WorldView(const btDeformableMultiBodyDynamicsWorld& world);
+  WorldView(const btCollisionWorld& world, const btAlignedObjectArray<btSoftBody*>& worldSoftBodies);
 
   const btCollisionWorld& objects;
   const btAlignedObjectArray<btSoftBody*>& softBodies;

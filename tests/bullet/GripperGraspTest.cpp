@@ -35,6 +35,23 @@ TEST_P(GripperGrasp, TheFingersLiftTheBodyAndFeelItsWeight) {
   EXPECT_NEAR(run.liftLoad, run.bodyLoad, 0.12 * run.bodyLoad);
 }
 
+// In Bullet's deformable world the fingers meet Bullet's own contacts (SDF_MDF), and the cube, a
+// mass-spring body, rises with them at Bullet's grasp demo's kDF of 2: ThinTool's report of what
+// those contacts and its last word put on the fingers (holdWrench) is what the lift's motor
+// carries beyond the gripper's weight, and near the cube's momentum balance.
+TEST(GripperGraspDeformable, TheFingersReportWhatBulletsContactsCarry) {
+  GripperSettings settings;
+  settings.world = WorldKind::Deformable;
+  settings.bodyFriction = 2;
+  const GripperRun run = runGripper(settings);
+  ASSERT_TRUE(run.finite);
+  EXPECT_GT(run.rise, 0.7 * run.lift) << "the body rose with the fingers";
+  EXPECT_LT(run.afterRelease, 0.02) << "let go, it is back on the ground";
+  EXPECT_EQ(run.crossed, 0) << "no node passed through a finger";
+  EXPECT_NEAR(run.reportedLoad, run.liftLoad, 0.03 * run.bodyLoad);
+  EXPECT_NEAR(run.reportedLoad, run.bodyLoad, 0.1 * run.bodyLoad);
+}
+
 INSTANTIATE_TEST_SUITE_P(Bodies, GripperGrasp, ::testing::Values(GraspedBody::Cube, GraspedBody::Cable),
                          [](const ::testing::TestParamInfo<GraspedBody>& param) {
                            return std::string(graspedBodyName(param.param));

@@ -195,14 +195,14 @@ TEST(GripperScene, RendersTheFingersAndTheHeldCubeWhereTheyAre) {
   Image image;
   btVector3 fingerPoint, cubePoint;
   scenes::GripperSettings settings;
-  settings.observer = [&](const btSoftMultiBodyDynamicsWorld& world, const std::array<Tool*, 2>& fingers,
-                          double time) {
+  settings.observer = [&](const btCollisionWorld& world, const btAlignedObjectArray<btSoftBody*>& softBodies,
+                          const std::array<Tool*, 2>& fingers, double time) {
     if (time < 4) return true;  // lifted and held
-    EXPECT_EQ(world.getSoftBodyArray().size(), 1);
-    const btSoftBody& cube = *world.getSoftBodyArray()[0];
+    EXPECT_EQ(softBodies.size(), 1);
+    const btSoftBody& cube = *softBodies[0];
     Overlay overlay;
     overlay.tools = {fingers[0], fingers[1]};
-    image = renderToImage(viewer, world, overlay, "viewer_gripper.png");
+    image = renderToImage(viewer, WorldView(world, softBodies), overlay, "viewer_gripper.png");
     // The middle of a finger's outer face, on the finger whose outer face the camera sees.
     const btVector3 eye = viewer.camera().eye();
     for (Tool* finger : fingers) {
