@@ -26,9 +26,11 @@ double distanceSquaredToSegment(const Vec3& p, const Vec3& a, const Vec3& b) {
 int sideOf(double coordinate) { return coordinate >= 0 ? 1 : -1; }
 
 // A node's passage through a piece's mid-surface between two poses, in the piece's frame: 0 when
-// it stays on one side or passes beside the piece, else its side (±1) before.
+// it stays on one side or passes beside the piece, else its side (±1) before. A node that crosses
+// the mid-surface no deeper than tolerance inside the piece's rim slid along the rim, as a face
+// that reaches no deeper than tolerance pierces nothing: it passed beside.
 int crossingSide(const SolidDistance& solid, const Pose& poseBefore, const Vec3& nodeBefore, const Pose& poseAfter,
-                 const Vec3& nodeAfter) {
+                 const Vec3& nodeAfter, double tolerance) {
   const int axis = solid.thinAxis();
   const Vec3 before = poseBefore.applyInverse(nodeBefore) - solid.centre();
   const Vec3 after = poseAfter.applyInverse(nodeAfter) - solid.centre();
@@ -36,7 +38,7 @@ int crossingSide(const SolidDistance& solid, const Pose& poseBefore, const Vec3&
   const double fraction = before[axis] / (before[axis] - after[axis]);
   Vec3 onMidSurface = before + (after - before) * fraction;
   onMidSurface[axis] = 0;
-  if (solid.signedDistance(onMidSurface + solid.centre()) > 0) return 0;  // passed beside the piece
+  if (solid.signedDistance(onMidSurface + solid.centre()) > -tolerance) return 0;  // passed beside the piece
   return sideOf(before[axis]);
 }
 
@@ -434,14 +436,14 @@ int GroundTruth::crossingAlongArc(std::size_t k, std::size_t i, const std::vecto
                                   const Vec3& nodeAfter) const {
   const SolidDistance& solid = m_pieces[k].solid;
   const Vec3& nodeBefore = m_previousNodes[i];
-  const int chord = crossingSide(solid, arc.front(), nodeBefore, arc.back(), nodeAfter);
+  const int chord = crossingSide(solid, arc.front(), nodeBefore, arc.back(), nodeAfter, m_tolerance);
   const int intervals = int(arc.size()) - 1;
   if (chord == 0 || intervals == 1) return chord;
   const Vec3 motion = nodeAfter - nodeBefore;
   for (int j = 0; j < intervals; ++j) {
     const Vec3 from = j == 0 ? nodeBefore : nodeBefore + motion * (double(j) / intervals);
     const Vec3 to = j + 1 == intervals ? nodeAfter : nodeBefore + motion * (double(j + 1) / intervals);
-    const int side = crossingSide(solid, arc[std::size_t(j)], from, arc[std::size_t(j) + 1], to);
+    const int side = crossingSide(solid, arc[std::size_t(j)], from, arc[std::size_t(j) + 1], to, m_tolerance);
     if (side != 0) return side;
   }
   return 0;
