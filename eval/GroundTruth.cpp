@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <unordered_map>
 
@@ -25,10 +26,26 @@ double distanceSquaredToSegment(const Vec3& p, const Vec3& a, const Vec3& b) {
 
 int sideOf(double coordinate) { return coordinate >= 0 ? 1 : -1; }
 
+// How far inside the piece's rim a point of its mid-surface lies (m, in the piece's frame): its
+// depth below the faces that bound the piece across the mid-surface, those turned more than 60°
+// from the thin axis (a plate's sides). Infinite for a piece without such faces.
+double depthInsideRim(const SolidDistance& solid, const Vec3& local) {
+  constexpr double kAcrossMidSurface = 0.5;  // |cos| of the angle between a rim face's normal and the thin axis
+  double depth = std::numeric_limits<double>::infinity();
+  const std::vector<Vec3>& normals = solid.faceNormals();
+  for (std::size_t f = 0; f < normals.size(); ++f) {
+    if (std::abs(normals[f][solid.thinAxis()]) >= kAcrossMidSurface) continue;
+    depth = std::min(depth, solid.faceOffsets()[f] - dot(normals[f], local));
+  }
+  return depth;
+}
+
 // A node's passage through a piece's mid-surface between two poses, in the piece's frame: 0 when
 // it stays on one side or passes beside the piece, else its side (±1) before. A node that crosses
 // the mid-surface no deeper than tolerance inside the piece's rim slid along the rim, as a face
-// that reaches no deeper than tolerance pierces nothing: it passed beside.
+// that reaches no deeper than tolerance pierces nothing: it passed beside. Near a blade's edge,
+// where the broad faces meet, the whole piece is thinner than the tolerance, and any passage there
+// still counts.
 int crossingSide(const SolidDistance& solid, const Pose& poseBefore, const Vec3& nodeBefore, const Pose& poseAfter,
                  const Vec3& nodeAfter, double tolerance) {
   const int axis = solid.thinAxis();
@@ -38,7 +55,9 @@ int crossingSide(const SolidDistance& solid, const Pose& poseBefore, const Vec3&
   const double fraction = before[axis] / (before[axis] - after[axis]);
   Vec3 onMidSurface = before + (after - before) * fraction;
   onMidSurface[axis] = 0;
-  if (solid.signedDistance(onMidSurface + solid.centre()) > -tolerance) return 0;  // passed beside the piece
+  const Vec3 local = onMidSurface + solid.centre();
+  if (solid.signedDistance(local) > 0) return 0;  // passed beside the piece
+  if (depthInsideRim(solid, local) <= tolerance) return 0;  // slid along its rim
   return sideOf(before[axis]);
 }
 

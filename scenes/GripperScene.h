@@ -63,7 +63,7 @@ struct GripperRun {
   int piercedSteps = 0;        ///< steps that ended with a soft face deeper than 0.1 mm in a finger
   double grip = 0;             ///< the finger motors' mean squeeze (N)
   double liftLoad = 0;         ///< what the lift motor carries beyond the gripper's own weight (N)
-  double bodyLoad = 0;         ///< what the body's momentum says the fingers carry: m g − dp/dt (N)
+  double bodyLoad = 0;         ///< what the body's momentum says the fingers carry: m g + dp/dt (N)
   /// ThinTool only: what the fingers' reports say they carry (N), −Σ reaction·y: the impulses
   /// ThinTool applied to them. In the deformable world Bullet's contacts apply theirs, and the
   /// reports' holdWrench holds those with the last word's: −Σ holdWrench·y.

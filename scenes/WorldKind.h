@@ -74,8 +74,8 @@ class SoftWorldOfKind {
   /// The world's gravity, its soft bodies' (btSoftBodyWorldInfo::m_gravity) and, in the deformable
   /// world, that of the gravity forces it keeps.
   void setGravity(const btVector3& gravity);
-  /// In the deformable world, the body takes Bullet's deformable rigid contacts (SDF_RD, SDF_RDF)
-  /// and gets springs (elastic stiffness springStiffness, N/m) and gravity, which the world keeps.
+  /// In the deformable world, the body takes Bullet's deformable rigid contacts on its faces, against
+  /// rigid bodies and multibody links (SDF_RD, SDF_RDF, SDF_MDF), and gets springs (elastic stiffness springStiffness, N/m) and gravity, which the world keeps.
   void addSoftBody(btSoftBody* body, double springStiffness = kDeformableSpring);
   void removeSoftBody(btSoftBody* body);
 

@@ -99,7 +99,7 @@ int main(int argc, char** argv) {
 #endif
   }
   std::printf("| body | Bullet | rise / lift (m) | slip (mm) | after release (m) | crossed | deepest (mm) | "
-              "grip (N) | lift motor's load (N) | body's m g - dp/dt (N) | reported (N) | ms a step |\n");
+              "grip (N) | lift motor's load (N) | body's m g + dp/dt (N) | reported (N) | ms a step |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const GraspedBody body : {GraspedBody::Cube, GraspedBody::Cable}) {
     for (const bool thinTool : {false, true}) {

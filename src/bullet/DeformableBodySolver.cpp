@@ -7,6 +7,7 @@
 #include <thintool/bullet/CollisionConfiguration.h>
 #include <thintool/bullet/Convert.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -81,14 +82,16 @@ void DeformableBodySolver::applyTransforms(btScalar timeStep) {
   // moves put on them (ToolStepReport::holdWrench).
   if (m_configuration.tools().empty() || m_objective == nullptr) return;
   const btDeformableContactProjection& projection = m_objective->m_projection;
-  for (int s = 0; s < projection.m_nodeRigidConstraints.size(); ++s) {
+  // One slot a soft body, resized only when the bodies' count changes: those past it are stale.
+  const int bodies = m_softBodies.size();
+  for (int s = 0; s < std::min(bodies, projection.m_nodeRigidConstraints.size()); ++s) {
     for (int c = 0; c < projection.m_nodeRigidConstraints[s].size(); ++c) {
       const btDeformableNodeRigidContactConstraint& constraint = projection.m_nodeRigidConstraints[s][c];
       m_impl->addSolverImpulse(*constraint.m_contact->m_cti.m_colObj, impulseOnRigid(constraint), constraint.m_node->m_x,
                                timeStep);
     }
   }
-  for (int s = 0; s < projection.m_faceRigidConstraints.size(); ++s) {
+  for (int s = 0; s < std::min(bodies, projection.m_faceRigidConstraints.size()); ++s) {
     for (int c = 0; c < projection.m_faceRigidConstraints[s].size(); ++c) {
       const btDeformableFaceRigidContactConstraint& constraint = projection.m_faceRigidConstraints[s][c];
       m_impl->addSolverImpulse(*constraint.m_contact->m_cti.m_colObj, impulseOnRigid(constraint),

@@ -100,6 +100,38 @@ TEST(GroundTruth, ANodeBesideTheFootprintOrPushedRoundTheRimDoesNotCross) {
   EXPECT_EQ(run.stillCrossed, 0);
 }
 
+// The plate moves down across a node that lies on its side face, 0.05 mm inside it (a dynamic
+// plate stopped at a sheet's pinned corner, generated seed 47279): within the tolerance of the rim
+// the node slid along it. At 0.5 mm inside, it went through.
+TEST(GroundTruth, ANodeSlidAlongTheRimWithinTheToleranceDoesNotCross) {
+  const auto crossedAt = [](double x) {
+    GroundTruth truth = plateTruth();
+    truth.start({at(0, 0.52, 0)}, {{x, 0.5, 0}}, {});
+    truth.update({at(0, 0.48, 0)}, {{x, 0.5, 0}}, {});
+    return truth.run().crossedNodes;
+  };
+  EXPECT_EQ(crossedAt(0.4 - 0.5e-4), 0);
+  EXPECT_EQ(crossedAt(0.4 - 5e-4), 1);
+}
+
+// A wedge blade, 2 mm thick at its back and sharp along its edge: near the edge the whole blade is
+// thinner than the tolerance, and a node that passes through it there still crosses.
+TEST(GroundTruth, ANodeThroughABladeNearItsEdgeCrosses) {
+  ConvexSolid wedge;
+  // Edge along z at x = 0.1; back at x = -0.1, 1 mm either side of y = 0.
+  wedge.vertices = {{0.1, 0, -0.2}, {0.1, 0, 0.2}, {-0.1, -0.001, -0.2}, {-0.1, -0.001, 0.2},
+                    {-0.1, 0.001, -0.2}, {-0.1, 0.001, 0.2}};
+  wedge.triangles = {{0, 4, 1}, {1, 4, 5}, {0, 3, 2}, {0, 1, 3}, {2, 3, 5}, {2, 5, 4}, {0, 2, 4}, {1, 5, 3}};
+  std::vector<GroundTruthPiece> pieces;
+  pieces.push_back({SolidDistance(wedge), Pose{}, 0});
+  GroundTruth truth(std::move(pieces), false);
+  ASSERT_EQ(SolidDistance(wedge).thinAxis(), 1);
+  // 2 cm from the edge the blade is 0.2 mm thick: the node is 0.1 mm from either broad face.
+  truth.start({at(0, 0.5, 0)}, {{0.08, 0.49, 0}}, {});
+  truth.update({at(0, 0.48, 0)}, {{0.08, 0.49, 0}}, {});
+  EXPECT_EQ(truth.run().crossedNodes, 1);
+}
+
 TEST(GroundTruth, ANodeThatCrossedAndCameBackIsNotStillCrossed) {
   GroundTruth truth = plateTruth();
   truth.start({at(0, 1, 0)}, {{0, 0.5, 0}}, {});
