@@ -12,9 +12,10 @@
 ///   centroid) to each convex piece; a sample inside a piece penetrates by minus that distance.
 /// - Crossing: a node crosses when, between two steps and in the piece's frame, it passes the
 ///   piece's mid-surface (the plane through the piece's centre across its thinnest axis) at a point
-///   deeper than the tolerance inside the piece. A node pushed round the tool's rim never counts,
-///   nor one that slid along the rim within the tolerance of it (as a face that reaches no deeper
-///   pierces nothing); one that went through does, however far it went.
+///   inside the piece and deeper than the tolerance inside its rim (the faces turned more than 60°
+///   from the thin axis). A node pushed round the tool's rim never counts, nor one that slid along
+///   the rim within the tolerance of it (as a face that reaches no deeper pierces nothing); one that
+///   went through does, however far it went, near a blade's edge too.
 ///   When a piece turns between two steps, where a node went in between is not known, and two
 ///   readings are each wrong for some node: straight in the piece's frame (the test above, the
 ///   chord) has a node the turning plate never reached pass through it, and straight in the world
