@@ -200,6 +200,7 @@ GripperRun runGripper(const GripperSettings& settings) {
   w.world->addSoftBody(body, deformable ? deformableSpringFor(*body, double(body->m_materials[0]->m_kLST),
                                                               settings.timeStep)
                                         : kDeformableSpring);
+  if (deformable && !settings.bulletFingerContacts) body->m_cfg.collisions &= ~btSoftBody::fCollision::SDF_MDF;
   Gripper gripper(world, settings.gripForce, settings.timeStep);
   std::array<Tool*, 2> tools{};
   if (settings.thinTool) {

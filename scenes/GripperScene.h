@@ -35,6 +35,10 @@ struct GripperSettings {
   /// whose springs are the tetrahedra's links (deformableSpringFor, at the classic material's kLST),
   /// and the fingers meet Bullet's deformable contacts, with ThinTool's last word after its solve.
   WorldKind world = WorldKind::SoftMultiBody;
+  /// Deformable world only: Bullet's own contacts between the body's faces and the fingers
+  /// (SDF_MDF). Off, the fingers meet the body through ThinTool's last word alone (and stock
+  /// Bullet's not at all).
+  bool bulletFingerContacts = true;
   double timeStep = 1.0 / 240;     ///< s
   double gripForce = 50;           ///< N, each finger motor's largest force
   double squeeze = 0.01;           ///< m, how far each finger is driven into the body

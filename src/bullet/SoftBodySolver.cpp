@@ -1683,11 +1683,12 @@ SeparationCounts SoftBodySolverImpl::separatePiece(Tool& tool, const ToolModel& 
     const Vec3 velocity = toVec3(node.m_v);
     const Real along = dot(velocity, normal);
     const Vec3 separated = velocity + normal * (std::max(along, dot(toolVelocity, normal)) - along);
+    Vec3 momentumTaken;  // the node's change of momentum, whose opposite the tool takes (N s)
     if (isFinite(separated)) {
       node.m_v = toBt(separated);
       if (node.m_im > 0) {
-        // The node's change of momentum, whose opposite the tool takes, over the step.
-        const Vec3 force = (velocity - separated) * (inverseStep / Real(node.m_im));
+        momentumTaken = (velocity - separated) / Real(node.m_im);
+        const Vec3 force = momentumTaken * inverseStep;
         tool.state().holdWrench.force += force;
         tool.state().holdWrench.torque += cross(toolPoint, force);
       }
@@ -1695,7 +1696,15 @@ SeparationCounts SoftBodySolverImpl::separatePiece(Tool& tool, const ToolModel& 
     detail::checkWrite(positionBefore, node.m_x, tool.state().lastWord.nonFiniteWrites);
     detail::checkWrite(velocityBefore, node.m_v, tool.state().lastWord.nonFiniteWrites);
     movedAny = true;
-    if (dynamicTool && node.m_im > 0) {
+    if (m_deformable) {
+      // After Bullet's deformable solve and its applyTransforms a move carries no momentum of its
+      // own: the tool takes the node's change of momentum, no more. Counting the move's speed as
+      // the closing speed, a multibody gripper's fingers holding a cube by the last word alone
+      // were pushed down with seven times its weight.
+      if (dynamicTool && node.m_im > 0 && momentumTaken != Vec3{}) {
+        dynamicTool.applyImpulse(toBt(momentumTaken), toBt(toolPoint));
+      }
+    } else if (dynamicTool && node.m_im > 0) {
       const int backing = m_backingOfNode[id];
       reactOnTool(dynamicTool, softBody, node, backing >= 0 ? &softBody.m_rcontacts[backing] : nullptr,
                   displacement, solvedVelocity);

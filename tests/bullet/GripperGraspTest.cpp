@@ -52,6 +52,22 @@ TEST(GripperGraspDeformable, TheFingersReportWhatBulletsContactsCarry) {
   EXPECT_NEAR(run.reportedLoad, run.bodyLoad, 0.1 * run.bodyLoad);
 }
 
+// Without Bullet's contacts on the fingers, ThinTool's last word alone holds the cube up in the
+// deformable world: the fingers take the momentum it gives the nodes, no more, so that the lift's
+// motor carries the cube's weight and the report says so (counting each move's speed as a closing
+// speed, the motor carried seven times the weight).
+TEST(GripperGraspDeformable, TheLastWordAloneLiftsTheCubeAndTheFingersCarryItsWeight) {
+  GripperSettings settings;
+  settings.world = WorldKind::Deformable;
+  settings.bulletFingerContacts = false;
+  const GripperRun run = runGripper(settings);
+  ASSERT_TRUE(run.finite);
+  EXPECT_GT(run.rise, 0.7 * run.lift) << "the body rose with the fingers";
+  EXPECT_EQ(run.crossed, 0) << "no node passed through a finger";
+  EXPECT_NEAR(run.reportedLoad, run.liftLoad, 0.03 * run.bodyLoad);
+  EXPECT_NEAR(run.liftLoad, run.bodyLoad, 0.1 * run.bodyLoad);
+}
+
 INSTANTIATE_TEST_SUITE_P(Bodies, GripperGrasp, ::testing::Values(GraspedBody::Cube, GraspedBody::Cable),
                          [](const ::testing::TestParamInfo<GraspedBody>& param) {
                            return std::string(graspedBodyName(param.param));

@@ -19,7 +19,8 @@
 /// moves each node to where the solve sends it, the tools of the configuration whose
 /// ToolOptions::separation is enabled put every soft node and face near them back on their side,
 /// as SoftBodySolver does in the classic worlds (response/Separation.h), with the node's velocity
-/// along its move the faster of its own and the tool's. Then, for tools with the energy guard on
+/// along its move the faster of its own and the tool's; a dynamic tool takes the momentum that
+/// velocity change gives the node (the move itself carries none after Bullet's solve). Then, for tools with the energy guard on
 /// (EnergyGuardSettings), no node of a body the last word reached moves faster than speedFactor
 /// times the faster of the tools' fastest corner and restingSpeed, or than the body's fastest node
 /// at the start of the step: the guard's speed bound, without its energy bound or its bound on the
