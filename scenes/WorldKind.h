@@ -75,7 +75,8 @@ class SoftWorldOfKind {
   /// world, that of the gravity forces it keeps.
   void setGravity(const btVector3& gravity);
   /// In the deformable world, the body takes Bullet's deformable rigid contacts on its faces, against
-  /// rigid bodies and multibody links (SDF_RD, SDF_RDF, SDF_MDF), and gets springs (elastic stiffness springStiffness, N/m) and gravity, which the world keeps.
+  /// rigid bodies and multibody links (SDF_RD, SDF_RDF, SDF_MDF), and gets springs (elastic
+  /// stiffness springStiffness, N/m) and gravity, which the world keeps.
   void addSoftBody(btSoftBody* body, double springStiffness = kDeformableSpring);
   void removeSoftBody(btSoftBody* body);
 

@@ -2,9 +2,9 @@
 // Copyright (c) 2026 The ThinTool developers
 //
 // This example shows a robot's two-finger gripper, a Featherstone multibody in Bullet's soft
-// multibody world (or, with --deformable, its deformable world), closing on a soft tetrahedral cube and on a tetrahedral cable, lifting each,
-// holding it and letting it go: stock Bullet's soft–multibody contact against ThinTool with each
-// finger link registered as a tool. Headless. One table: whether the body rose with the fingers,
+// multibody world (or, with --deformable, its deformable world), closing on a soft tetrahedral cube
+// and on a tetrahedral cable, lifting each, holding it and letting it go: stock Bullet's
+// soft–multibody contact against ThinTool with each finger link registered as a tool. Headless. One table: whether the body rose with the fingers,
 // how far it slipped, nodes through a finger (the evaluation suite's ground truth), the squeeze,
 // the load the lift's motor carries against the body's momentum balance, and the time a step.
 // Where the viewer is built, --view shows one grasp (the cube, or --cable; ThinTool's, or --stock)

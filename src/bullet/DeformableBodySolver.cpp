@@ -83,21 +83,19 @@ void DeformableBodySolver::applyTransforms(btScalar timeStep) {
   if (m_configuration.tools().empty() || m_objective == nullptr) return;
   const btDeformableContactProjection& projection = m_objective->m_projection;
   // One slot a soft body, resized only when the bodies' count changes: those past it are stale.
-  const int bodies = m_softBodies.size();
-  for (int s = 0; s < std::min(bodies, projection.m_nodeRigidConstraints.size()); ++s) {
-    for (int c = 0; c < projection.m_nodeRigidConstraints[s].size(); ++c) {
-      const btDeformableNodeRigidContactConstraint& constraint = projection.m_nodeRigidConstraints[s][c];
-      m_impl->addSolverImpulse(*constraint.m_contact->m_cti.m_colObj, impulseOnRigid(constraint), constraint.m_node->m_x,
-                               timeStep);
+  const auto addImpulses = [&](const auto& perBody, const auto& pointOf) {
+    for (int s = 0; s < std::min(m_softBodies.size(), perBody.size()); ++s) {
+      for (int c = 0; c < perBody[s].size(); ++c) {
+        const auto& constraint = perBody[s][c];
+        m_impl->addSolverImpulse(*constraint.m_contact->m_cti.m_colObj, impulseOnRigid(constraint),
+                                 pointOf(constraint), timeStep);
+      }
     }
-  }
-  for (int s = 0; s < std::min(bodies, projection.m_faceRigidConstraints.size()); ++s) {
-    for (int c = 0; c < projection.m_faceRigidConstraints[s].size(); ++c) {
-      const btDeformableFaceRigidContactConstraint& constraint = projection.m_faceRigidConstraints[s][c];
-      m_impl->addSolverImpulse(*constraint.m_contact->m_cti.m_colObj, impulseOnRigid(constraint),
-                               constraint.getContact()->m_contactPoint, timeStep);
-    }
-  }
+  };
+  addImpulses(projection.m_nodeRigidConstraints,
+              [](const btDeformableNodeRigidContactConstraint& node) { return node.m_node->m_x; });
+  addImpulses(projection.m_faceRigidConstraints,
+              [](const btDeformableFaceRigidContactConstraint& face) { return face.getContact()->m_contactPoint; });
 }
 
 void DeformableBodySolver::setConstraints(const btContactSolverInfo& infoGlobal) {

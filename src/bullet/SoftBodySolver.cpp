@@ -45,16 +45,21 @@ void reactOnTool(detail::DynamicBody& tool, const btSoftBody& softBody, const bt
   detail::applyNodeReaction(tool, node.m_x, displacement, 0, softBody.m_sst.isdt, backingVelocity);
 }
 
-// Adds to a tool's hold wrench (torque about the world's origin) the force of a hold that undid
-// moveUndone of the node's motion in a contact stage: the hold's impulse is m·moveUndone/dt, the
-// force over the step that impulse over dt.
+// Adds force (N, on the tool) at point (world) to the tool's hold wrench, whose torque is about the
+// world's origin.
+void addToHoldWrench(detail::ToolState& tool, const Vec3& point, const Vec3& force) {
+  tool.holdWrench.force += force;
+  tool.holdWrench.torque += cross(point, force);
+}
+
+// Adds to a tool's hold wrench the force of a hold that undid moveUndone of the node's motion in a
+// contact stage: the hold's impulse is m·moveUndone/dt, the force over the step that impulse over dt.
 void addHoldForce(detail::ToolState& tool, const btSoftBody::Node& node, const btVector3& moveUndone,
                   double inverseStepSquared) {
   if (!(node.m_im > 0)) return;
   const Vec3 force = toVec3(moveUndone) * (inverseStepSquared / double(node.m_im));
   if (!isFinite(force)) return;
-  tool.holdWrench.force += force;
-  tool.holdWrench.torque += cross(toVec3(node.m_x), force);
+  addToHoldWrench(tool, toVec3(node.m_x), force);
 }
 
 // Everything the piece can reach during the step: its boxes at the arc's samples, grown by how far
@@ -717,8 +722,7 @@ void SoftBodySolverImpl::addSolverImpulse(const btCollisionObject& object, const
   if (tool == nullptr || !(timeStep > 0)) return;
   const Vec3 force = toVec3(impulse) / Real(timeStep);
   if (!isFinite(force) || !isFinite(toVec3(point))) return;
-  tool->state().holdWrench.force += force;
-  tool->state().holdWrench.torque += cross(toVec3(point), force);
+  addToHoldWrench(tool->state(), toVec3(point), force);
 }
 
 double SoftBodySolverImpl::deformableSpeedBound(const btSoftBody& body, double startFastest) const {
@@ -1688,9 +1692,7 @@ SeparationCounts SoftBodySolverImpl::separatePiece(Tool& tool, const ToolModel& 
       node.m_v = toBt(separated);
       if (node.m_im > 0) {
         momentumTaken = (velocity - separated) / Real(node.m_im);
-        const Vec3 force = momentumTaken * inverseStep;
-        tool.state().holdWrench.force += force;
-        tool.state().holdWrench.torque += cross(toolPoint, force);
+        addToHoldWrench(tool.state(), toolPoint, momentumTaken * inverseStep);
       }
     }
     detail::checkWrite(positionBefore, node.m_x, tool.state().lastWord.nonFiniteWrites);

@@ -20,8 +20,8 @@
 /// ToolOptions::separation is enabled put every soft node and face near them back on their side,
 /// as SoftBodySolver does in the classic worlds (response/Separation.h), with the node's velocity
 /// along its move the faster of its own and the tool's; a dynamic tool takes the momentum that
-/// velocity change gives the node (the move itself carries none after Bullet's solve). Then, for tools with the energy guard on
-/// (EnergyGuardSettings), no node of a body the last word reached moves faster than speedFactor
+/// velocity change gives the node (the move itself carries none after Bullet's solve). Then, for
+/// tools with the energy guard on (EnergyGuardSettings), no node of a body the last word reached moves faster than speedFactor
 /// times the faster of the tools' fastest corner and restingSpeed, or than the body's fastest node
 /// at the start of the step: the guard's speed bound, without its energy bound or its bound on the
 /// next step's forces. The contacts inside the solve stay Bullet's (ToolDiagnostics::stockPairs
