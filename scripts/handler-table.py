@@ -2,11 +2,11 @@
 """Prints the table (docs/results/evaluation.md) of stock Bullet's soft-rigid handler against ThinTool's collision stage.
 
 Runs benchmarks/bullet/HandlerBench.cpp's rows (StockHandler, ThinToolHandler,
-ThinToolPaperHandler at each <faces>/<margin mm>, and the same scene's StockHandlerSoftMultiBody and
-ThinToolHandlerSoftMultiBody in the soft multibody world) with repetitions in random order and keeps
-each row's fastest repetition (each time figure on its own, scripts/benchmark_rows.py), then prints
-one markdown row per size and margin, and a second table of the stage in each world. Needs a
-Release build in ./build (see README):
+ThinToolPaperHandler at each <faces>/<margin mm>, and the same scene's StockHandler<World> and
+ThinToolHandler<World> rows in the soft multibody and the deformable world) with repetitions in
+random order and keeps each row's fastest repetition (each time figure on its own,
+scripts/benchmark_rows.py), then prints one markdown row per size and margin, and a second table of
+the stage and the last word in each world. Needs a Release build in ./build (see README):
 
     ./scripts/handler-table.py [repetitions, 5 by default]
 """
@@ -17,7 +17,8 @@ from benchmark_rows import fastest_rows, number
 repetitions = sys.argv[1] if len(sys.argv) > 1 else "5"
 figures = ("real_time", "detectUs", "lastWordUs", "sharedPassUs", "guardUs")
 fastest = {(name, int(faces), int(margin)): row
-           for (name, faces, margin, *_), row in fastest_rows("Handler(SoftMultiBody)?/", repetitions, figures).items()}
+           for (name, faces, margin, *_), row
+           in fastest_rows("Handler(SoftMultiBody|Deformable)?/", repetitions, figures).items()}
 print("| faces, margin | stock | ThinTool: stage / detection | ratio to stock: stage / detection "
       "| last word (of which shared with Bullet; energy guard) | ratio to stock: stage + last word, + its own part "
       "| paper: stage / detection | ThinTool faces gathered (meeting the swept box) "
@@ -40,11 +41,16 @@ for faces, margin in sizes:
           f"| {stock['nodesNear']:,.0f} |")
 
 print()
-print("| faces, margin | world | stock | ThinTool's stage | ratio to stock |")
-print("|---|---|---|---|---|")
-worlds = (("btSoftRigidDynamicsWorld", ""), ("btSoftMultiBodyDynamicsWorld", "SoftMultiBody"))
-for faces, margin in sorted({(faces, margin) for (name, faces, margin) in fastest if name.endswith("SoftMultiBody")}):
+print("| faces, margin | world | stock | ThinTool's stage | ratio to stock | last word "
+      "| ratio to stock: stage + last word |")
+print("|---|---|---|---|---|---|---|")
+worlds = (("btSoftRigidDynamicsWorld", ""), ("btSoftMultiBodyDynamicsWorld", "SoftMultiBody"),
+          ("btDeformableMultiBodyDynamicsWorld", "Deformable"))
+world_sizes = {(faces, margin) for (name, faces, margin) in fastest if name.endswith("SoftMultiBody")}
+for faces, margin in sorted(world_sizes):
     for world, suffix in worlds:
         stock = fastest[("StockHandler" + suffix, faces, margin)]["real_time"]
-        tool = fastest[("ThinToolHandler" + suffix, faces, margin)]["real_time"]
-        print(f"| {faces:,}, {margin} mm | {world} | {number(stock)} | {number(tool)} | {tool / stock:.2f} |")
+        tool = fastest[("ThinToolHandler" + suffix, faces, margin)]
+        print(f"| {faces:,}, {margin} mm | {world} | {number(stock)} | {number(tool['real_time'])} "
+              f"| {tool['real_time'] / stock:.2f} | {number(tool['lastWordUs'])} "
+              f"| {(tool['real_time'] + tool['lastWordUs']) / stock:.2f} |")

@@ -45,7 +45,10 @@
 //
 // The rows whose names end in SoftMultiBody build the same scene in btSoftMultiBodyDynamicsWorld
 // (with btMultiBodyConstraintSolver), PyBullet's soft world, where Bullet collides the pairs the
-// same way: each world's stage against stock's in it.
+// same way: each world's stage against stock's in it. Those ending in Deformable build it in
+// btDeformableMultiBodyDynamicsWorld, the ball a mass-spring body, where the tool's pairs are
+// Bullet's own for both (its deformable node and face contacts, counted in contacts): ThinTool's
+// part is its last word, lastWordUs, after Bullet's solve.
 //
 // Deviations from a run: no gravity or pressure, and the caches are warm (the replay revisits the
 // same data).
@@ -155,7 +158,7 @@ struct Replay {
     scene->step(poseAt(kPressSteps));
     dispatcher->setNearCallback(&btCollisionDispatcher::defaultNearCallback);
     capturing = nullptr;
-    if (thintool::Tool* tool = scene->tool()) {
+    if (thintool::Tool* tool = scene->tool(); tool != nullptr && softWorld != WorldKind::Deformable) {
       const thintool::ToolDiagnostics& d = tool->report().diagnostics;
       stepContacts = static_cast<long>(d.detection.colliding);
       stepDetectMicroseconds = d.detectionMicroseconds;
@@ -165,6 +168,12 @@ struct Replay {
       stepGuardMicroseconds = d.lastWord.energyGuardMicroseconds;
     } else {
       stepContacts = countStockContacts();
+    }
+    if (thintool::Tool* tool = scene->tool(); tool != nullptr && softWorld == WorldKind::Deformable) {
+      const thintool::ToolDiagnostics& d = tool->report().diagnostics;
+      stepLastWordMicroseconds = d.lastWord.microseconds;
+      stepSharedPassMicroseconds = d.lastWord.sharedPassMicroseconds;
+      stepGuardMicroseconds = d.lastWord.energyGuardMicroseconds;
     }
 
     // Back to the collision stage. The trees' volumes still are those of that step's prediction.
@@ -213,13 +222,16 @@ struct Replay {
     }
   }
 
+  // Bullet's contacts with the tool: the classic worlds' node contacts, the deformable world's node
+  // and face contacts.
   long countStockContacts() const {
-    long count = 0;
     const btSoftBody& ball = scene->ball();
-    for (int i = 0; i < ball.m_rcontacts.size(); ++i) {
-      count += ball.m_rcontacts[i].m_cti.m_colObj == &scene->toolBody() ? 1 : 0;
-    }
-    return count;
+    const auto count = [&](const auto& contacts) {
+      long withTool = 0;
+      for (int i = 0; i < contacts.size(); ++i) withTool += contacts[i].m_cti.m_colObj == &scene->toolBody() ? 1 : 0;
+      return withTool;
+    };
+    return count(ball.m_rcontacts) + count(ball.m_nodeRigidContacts) + count(ball.m_faceRigidContacts);
   }
 
   // Empties the ball's contact array and keeps its memory, as Bullet's predictMotion does (whose
@@ -228,6 +240,12 @@ struct Replay {
     btSoftBody& ball = scene->ball();
     while (ball.m_rcontacts.size() > 0) {
       ball.m_rcontacts.pop_back();
+    }
+    while (ball.m_nodeRigidContacts.size() > 0) {
+      ball.m_nodeRigidContacts.pop_back();
+    }
+    while (ball.m_faceRigidContacts.size() > 0) {
+      ball.m_faceRigidContacts.pop_back();
     }
   }
 
@@ -308,7 +326,7 @@ void run(benchmark::State& state, Algorithm algorithm, WorldKind world = WorldKi
     const long before = test::allocationCount();
     state.SetIterationTime(replay.runPairs());
     allocated += test::allocationCount() - before;
-    if (tool != nullptr) {
+    if (tool != nullptr && world != WorldKind::Deformable) {
       const thintool::ToolDiagnostics& d = tool->report().diagnostics;
       contacts += d.detection.colliding;
       facesNear += d.detection.facesGathered;
@@ -333,6 +351,13 @@ void run(benchmark::State& state, Algorithm algorithm, WorldKind world = WorldKi
   state.counters["stepUs"] = replay.stepMicroseconds;
   state.counters["allocs"] = static_cast<double>(allocated) / n;
   if (tool != nullptr) {
+    state.counters["lastWordUs"] = replay.stepLastWordMicroseconds;
+    state.counters["sharedPassUs"] = replay.stepSharedPassMicroseconds;
+    state.counters["guardUs"] = replay.stepGuardMicroseconds;
+  }
+  // In the deformable world the tool's pairs are Bullet's (ToolDiagnostics::stockPairs): only the
+  // last word is ThinTool's.
+  if (tool != nullptr && world != WorldKind::Deformable) {
     state.counters["toolNodes"] = tool->nodeCount();
     state.counters["facesNear"] = facesNear / n;
     state.counters["facesWalked"] = facesWalked / n;
@@ -340,9 +365,6 @@ void run(benchmark::State& state, Algorithm algorithm, WorldKind world = WorldKi
     state.counters["tests"] = tests / n;
     state.counters["detectUs"] = detect / n;
     state.counters["responseUs"] = respond / n;
-    state.counters["lastWordUs"] = replay.stepLastWordMicroseconds;
-    state.counters["sharedPassUs"] = replay.stepSharedPassMicroseconds;
-    state.counters["guardUs"] = replay.stepGuardMicroseconds;
     state.counters["stepDetectUs"] = replay.stepDetectMicroseconds;
     state.counters["stepFacesNear"] = replay.stepFacesNear;
   } else {
@@ -357,6 +379,8 @@ void StockHandlerSoftMultiBody(benchmark::State& state) { run(state, Algorithm::
 void ThinToolHandlerSoftMultiBody(benchmark::State& state) {
   run(state, Algorithm::ThinTool, WorldKind::SoftMultiBody);
 }
+void StockHandlerDeformable(benchmark::State& state) { run(state, Algorithm::StockE, WorldKind::Deformable); }
+void ThinToolHandlerDeformable(benchmark::State& state) { run(state, Algorithm::ThinTool, WorldKind::Deformable); }
 
 // Arguments: the ball's faces (128 is the paper's ball) and its margin in mm, ThinTool's skin: stock
 // E's 50 mm, and 5 mm (DetectionBench's skin) for both algorithms at two sizes, where the margin's
@@ -371,6 +395,8 @@ BENCHMARK(ThinToolPaperHandler) THINTOOL_HANDLER_SIZES->UseManualTime()->Unit(be
 #define THINTOOL_HANDLER_WORLD_SIZES ->Args({128, 50})->Args({4096, 50})->Args({65536, 50})
 BENCHMARK(StockHandlerSoftMultiBody) THINTOOL_HANDLER_WORLD_SIZES->UseManualTime()->Unit(benchmark::kMicrosecond);
 BENCHMARK(ThinToolHandlerSoftMultiBody) THINTOOL_HANDLER_WORLD_SIZES->UseManualTime()->Unit(benchmark::kMicrosecond);
+BENCHMARK(StockHandlerDeformable) THINTOOL_HANDLER_WORLD_SIZES->UseManualTime()->Unit(benchmark::kMicrosecond);
+BENCHMARK(ThinToolHandlerDeformable) THINTOOL_HANDLER_WORLD_SIZES->UseManualTime()->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace thintool::scenes
