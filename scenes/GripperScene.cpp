@@ -268,6 +268,7 @@ GripperRun runGripper(const GripperSettings& settings) {
         if (tool == nullptr) continue;
         const ToolStepReport& report = tool->report();
         run.reportedLoad -= double(deformable ? report.holdWrench.force.y : report.reaction.force.y);
+        run.appliedLoad -= double(report.reaction.force.y);
       }
     }
     if (step == hold - 1) {
@@ -285,6 +286,7 @@ GripperRun runGripper(const GripperSettings& settings) {
   run.liftLoad /= loadDivisor;
   run.bodyLoad /= loadDivisor;
   run.reportedLoad /= loadDivisor;
+  run.appliedLoad /= loadDivisor;
   for (const BoxGroundTruth& truth : truths) {
     run.crossed += truth.metrics().crossed;
     run.deepest = std::max(run.deepest, truth.metrics().maxPenetration);

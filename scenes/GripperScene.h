@@ -72,6 +72,9 @@ struct GripperRun {
   /// ThinTool applied to them. In the deformable world Bullet's contacts apply theirs, and the
   /// reports' holdWrench holds those with the last word's: −Σ holdWrench·y.
   double reportedLoad = 0;
+  /// ThinTool only: what ThinTool itself applied to the fingers, −Σ reaction·y (N): in the classic
+  /// worlds reportedLoad, in the deformable world the last word's part of it.
+  double appliedLoad = 0;
   bool finite = true;          ///< every node and joint finite at every step
   double wallMilliseconds = 0; ///< world steps, per step
 };

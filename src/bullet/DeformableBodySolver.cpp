@@ -70,6 +70,7 @@ DeformableBodySolver::DeformableBodySolver(CollisionConfiguration& configuration
 DeformableBodySolver::~DeformableBodySolver() = default;
 
 void DeformableBodySolver::predictMotion(btScalar solverdt) {
+  m_impl->beginToolSteps(solverdt);
   m_impl->rememberSpeeds();
   btDeformableBodySolver::predictMotion(solverdt);
 }

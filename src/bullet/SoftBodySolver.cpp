@@ -959,13 +959,15 @@ void SoftBodySolverImpl::measureEnergy(btScalar timeStep) {
   }
 }
 
-void SoftBodySolverImpl::predictMotion(btScalar timeStep) {
-  // The step begins here, before the collision pass: the impulses a dynamic tool takes are summed
-  // from now on.
+void SoftBodySolverImpl::beginToolSteps(btScalar timeStep) {
   for (Tool* tool : m_configuration.tools()) {
     tool->state().applied = detail::AppliedImpulse{};
     tool->state().stepLength = timeStep;
   }
+}
+
+void SoftBodySolverImpl::predictMotion(btScalar timeStep) {
+  beginToolSteps(timeStep);
   for (int s = 0; s < m_softBodySet.size(); ++s) {
     btSoftBody& softBody = *m_softBodySet[s];
     if (!softBody.isActive()) continue;

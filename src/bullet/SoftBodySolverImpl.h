@@ -43,6 +43,10 @@ class SoftBodySolverImpl {
   void solveConstraints(btScalar timeStep);
   void predictMotion(btScalar timeStep);
 
+  /// Both solvers', at the start of a step of timeStep (s), before the collision pass: the
+  /// impulses ThinTool applies to a dynamic tool are summed from here on (ToolStepReport::reaction).
+  void beginToolSteps(btScalar timeStep);
+
   // The deformable solver's (DeformableBodySolver): before Bullet's applyTransforms, where each
   // node begins the step; after it, the last word, with neither holds in a solve nor energy guard.
   void rememberSpeeds();  // before Bullet's predictMotion: the fastest node of each body

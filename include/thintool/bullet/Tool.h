@@ -160,8 +160,10 @@ struct ToolStepReport {
   /// Force (N) and torque about the tool body's origin (N·m) of the impulses ThinTool applied to a
   /// dynamic tool in the step (the moved nodes' reactions, its holds' push after the soft solve,
   /// the pinned nodes' stops, and the force model's when it reacts on the tool), over the step:
-  /// the tissue's load as the tool's motion took it. Zero for a static or kinematic tool, and in a
-  /// world whose soft-body solver is not a thintool::SoftBodySolver.
+  /// the tissue's load as the tool's motion took it. In the deformable world, with
+  /// thintool::DeformableBodySolver, the momentum the last word's velocity changes gave the nodes
+  /// and the pinned nodes' stops: Bullet's own contacts push the tool there, outside ThinTool.
+  /// Zero for a static or kinematic tool, and in a world whose soft-body solver is neither.
   Wrench reaction;
   /// The tissue's force on the tool by the force model (Hunt–Crossley by default).
   ToolForce contactForce;
