@@ -152,6 +152,7 @@ ToolOptions optionsFor(const SceneSpec& scene, const ToolSpec& tool) {
   options.bullet.holdInSolver = options.bullet.holdInSolver && scene.holds;
   if (scene.holdPlaneReach.has_value()) options.bullet.holdPlaneReach = Real(*scene.holdPlaneReach);
   options.bullet.scanFaces = scene.scanFaces;
+  options.bullet.deformableNodeContacts = scene.deformableNodeContacts;
   options.sweptFollowsArc = scene.followArc;
   options.energyGuard.enabled = options.energyGuard.enabled && scene.energyGuard;
   options.energyGuard.boundForcesNextStep = options.energyGuard.boundForcesNextStep && scene.boundForces;

@@ -166,6 +166,9 @@ struct SceneSpec {
   bool energyGuard = true;     ///< ThinTool: the energy guard after the soft solver (ToolOptions::energyGuard); "paper" and "ray-only" never have it
   bool boundForces = true;     ///< ThinTool: with the energy guard, the bound on the forces in the step after a guarded one (EnergyGuardSettings::boundForcesNextStep)
   bool scanFaces = false;      ///< ThinTool: swept detection reads every soft face instead of walking a face tree (BulletSettings::scanFaces)
+  /// ThinTool in the deformable world: its detection gives Bullet's solve the tool's node contacts
+  /// (BulletSettings::deformableNodeContacts)
+  bool deformableNodeContacts = false;
   bool followArc = false;      ///< ThinTool: swept detection confirms a node's chord on the turning tool's arc (ToolOptions::sweptFollowsArc)
 };
 

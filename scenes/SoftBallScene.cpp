@@ -433,6 +433,7 @@ PressResult runPress(const PressSettings& settings) {
       result.excludedByCheck1 += d.detection.excludedByCheck1;
       result.excludedByCheck2 += d.detection.excludedByCheck2;
       result.maxRemainingPenetration = std::max(result.maxRemainingPenetration, d.maxRemainingPenetration);
+      result.lastWordMoves += long(d.lastWord.counts.nodesMoved) + long(d.lastWord.counts.facesMoved);
     }
   }
   result.steps = moveSteps + holdSteps;

@@ -148,6 +148,7 @@ struct PressResult {
   long excludedByCheck1 = 0;            ///< summed over the steps
   long excludedByCheck2 = 0;
   double maxRemainingPenetration = 0;   ///< ThinTool's own measure, for comparison with metrics
+  long lastWordMoves = 0;               ///< node and face moves of ThinTool's last word, summed over the steps
 };
 
 PressResult runPress(const PressSettings& settings);

@@ -44,6 +44,9 @@ inside the soft body, pierced faces, penetration deeper than 0.1 mm, non-finite 
                      (EnergyGuardSettings::boundForcesNextStep)
   --scan-faces       swept detection reads every soft face instead of walking a face tree
                      (BulletSettings::scanFaces)
+  --deformable-contacts
+                     with --deformable: ThinTool's detection gives Bullet's solve the tool's node
+                     contacts (BulletSettings::deformableNodeContacts)
   --follow-arc       swept detection confirms a node's chord on a turning tool's arc
                      (ToolOptions::sweptFollowsArc)
   --friction         ThinTool's friction on, with stock Bullet's coefficient: the soft body's kDF
@@ -128,6 +131,7 @@ int main(int argc, char** argv) {
   bool energyGuard = true;
   bool boundForces = true;
   bool scanFaces = false;
+  bool deformableContacts = false;
   bool followArc = false;
   bool friction = false;
   bool softMultiBody = false;
@@ -168,6 +172,8 @@ int main(int argc, char** argv) {
         boundForces = false;
       } else if (arg == "--scan-faces") {
         scanFaces = true;
+      } else if (arg == "--deformable-contacts") {
+        deformableContacts = true;
       } else if (arg == "--follow-arc") {
         followArc = true;
       } else if (arg == "--friction") {
@@ -220,6 +226,7 @@ int main(int argc, char** argv) {
       scene.energyGuard = energyGuard;
       scene.boundForces = boundForces;
       scene.scanFaces = scanFaces;
+      scene.deformableNodeContacts = deformableContacts;
       scene.followArc = followArc;
       if (friction) {
         scene.friction = true;
@@ -259,13 +266,14 @@ int main(int argc, char** argv) {
     energy += verdict.energy;
     refused += verdict.refused;
     const std::string reach = holdReach.has_value() ? " --hold-reach " + formatNumber(*holdReach) : "";
-    std::printf("seed %llu failed: %s; reproduce: %s --seed %llu --algorithm %s%s%s%s%s%s%s%s%s%s%s%s%s --verbose\n",
+    std::printf("seed %llu failed: %s; reproduce: %s --seed %llu --algorithm %s%s%s%s%s%s%s%s%s%s%s%s%s%s --verbose\n",
                 static_cast<unsigned long long>(seed), joinReasons(verdict).c_str(), argv[0],
                 static_cast<unsigned long long>(seed), algorithmKey(algorithm), lastWord ? "" : " --no-last-word",
                 holds ? "" : " --no-holds", reach.c_str(), energyGuard ? "" : " --no-energy-guard",
                 boundForces ? "" : " --no-force-bound", scanFaces ? " --scan-faces" : "", followArc ? " --follow-arc" : "",
                 friction ? " --friction" : "", softMultiBody ? " --soft-multibody" : "",
-                deformable ? " --deformable" : "", generatorOptions.bulletKinds ? " --bullet-kinds" : "",
+                deformable ? " --deformable" : "", deformableContacts ? " --deformable-contacts" : "",
+                generatorOptions.bulletKinds ? " --bullet-kinds" : "",
                 withinThickness ? " --within-thickness" : "");
     std::fflush(stdout);
   }

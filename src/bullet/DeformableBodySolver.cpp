@@ -2,10 +2,15 @@
 // Copyright (c) 2026 The ThinTool developers
 #include <thintool/bullet/DeformableBodySolver.h>
 
+#include "PairState.h"
 #include "SoftBodySolverImpl.h"
+#include "ToolState.h"
 
 #include <thintool/bullet/CollisionConfiguration.h>
 #include <thintool/bullet/Convert.h>
+#include <thintool/bullet/Tool.h>
+
+#include <BulletSoftBody/btSoftBodyInternals.h>
 
 #include <algorithm>
 #include <cmath>
@@ -63,6 +68,66 @@ btVector3 impulseOnRigid(const btDeformableRigidContactConstraint& constraint) {
 
 }  // namespace
 
+namespace detail {
+
+// The tool's node contacts with the body in Bullet's solve: those ThinTool's detection found in
+// this step's collision pass (BulletSettings::deformableNodeContacts) in place of Bullet's own. Each
+// is built as Bullet builds its own for a rigid body (btSoftBodyInternals.h, CollideSDF_RD): on the
+// plane the node must stay in front of, the offset its distance there at the start of the step (a
+// node still in front may close that far in the step), Bullet's coefficients, the impulse matrix
+// of the node's effective mass and the body's, resolved at the node's place now.
+void SoftBodySolverImpl::feedNodeContacts(btSoftBody& body) {
+  for (Tool* tool : m_configuration.tools()) feedToolNodeContacts(body, *tool);
+}
+
+void SoftBodySolverImpl::feedToolNodeContacts(btSoftBody& body, Tool& tool) {
+  bool feeds = false;
+  for (const auto& pair : tool.state().pairs) feeds = feeds || (pair->softBody == &body && pair->feedsDeformable);
+  if (!feeds) return;
+  const btCollisionObject& object = tool.body();
+  for (int c = 0; c < body.m_nodeRigidContacts.size();) {
+    if (body.m_nodeRigidContacts[c].m_cti.m_colObj != &object) {
+      ++c;
+      continue;
+    }
+    body.m_nodeRigidContacts.swap(c, body.m_nodeRigidContacts.size() - 1);
+    body.m_nodeRigidContacts.pop_back();
+  }
+  const btRigidBody* rigid = btRigidBody::upcast(&object);
+  const btScalar bodyInverseMass = rigid != nullptr ? rigid->getInvMass() : btScalar(0);
+  static const btMatrix3x3 noInverseInertia(0, 0, 0, 0, 0, 0, 0, 0, 0);
+  const btMatrix3x3& inverseInertia = rigid != nullptr ? rigid->getInvInertiaTensorWorld() : noInverseInertia;
+  const btScalar friction = body.m_cfg.kDF * object.getFriction();
+  const btScalar hardness = object.isStaticOrKinematicObject() ? body.m_cfg.kKHR : body.m_cfg.kCHR;
+  for (auto& pair : tool.state().pairs) {
+    if (pair->softBody != &body || !pair->feedsDeformable) continue;
+    pair->feedsDeformable = false;
+    for (const PatchContact& found : pair->detection.contacts) {
+      if (found.kind != ContactKind::SoftNode || found.softNodes[0] >= static_cast<Index>(body.m_nodes.size())) {
+        continue;
+      }
+      btSoftBody::Node& node = body.m_nodes[static_cast<int>(found.softNodes[0])];
+      if (node.m_battach != 0 || !(node.m_im + bodyInverseMass > 0)) continue;
+      btSoftBody::DeformableNodeRigidContact contact;
+      contact.t1 = contact.t2 = btVector3(0, 0, 0);  // the multibody's tangents, unused for a rigid body
+      contact.m_node = &node;
+      contact.m_cti.m_colObj = &object;
+      contact.m_cti.m_normal = toBt(found.normal);
+      contact.m_cti.m_offset = btScalar(dot(found.normal, toVec3(node.m_x)) + found.offset);
+      const btVector3 arm = node.m_x - object.getWorldTransform().getOrigin();
+      contact.m_c0 = ImpulseMatrix(1, node.m_effectiveMass_inv, bodyInverseMass, inverseInertia, arm);
+      contact.m_c1 = arm;
+      contact.m_c2 = node.m_im;
+      contact.m_c3 = friction;
+      contact.m_c4 = hardness;
+      contact.m_c5 = node.m_effectiveMass_inv;
+      if (isFinite(contact)) body.m_nodeRigidContacts.push_back(contact);
+    }
+  }
+}
+
+}  // namespace detail
+
 DeformableBodySolver::DeformableBodySolver(CollisionConfiguration& configuration)
     : m_configuration(configuration),
       m_impl(std::make_unique<detail::SoftBodySolverImpl>(configuration, m_softBodies, true)) {}
@@ -103,6 +168,7 @@ void DeformableBodySolver::setConstraints(const btContactSolverInfo& infoGlobal)
   if (!m_configuration.tools().empty()) {
     for (int s = 0; s < m_softBodies.size(); ++s) {
       btSoftBody& body = *m_softBodies[s];
+      m_impl->feedNodeContacts(body);
       m_droppedContacts += dropNonFinite(body.m_nodeRigidContacts) + dropNonFinite(body.m_faceRigidContacts);
     }
   }

@@ -95,6 +95,10 @@ struct PairState {
   double detectionMicroseconds = 0;
   double responseMicroseconds = 0;
   StockReason stock = StockReason::None;
+  /// In the deformable world (BulletSettings::deformableNodeContacts): this step's node contacts
+  /// go into Bullet's solve (thintool::DeformableBodySolver::setConstraints), and the patch's ends
+  /// are the nodes' predicted places, which Bullet keeps in m_q there.
+  bool feedsDeformable = false;
   bool invalidPose = false;
   Index nonFiniteWrites = 0;  ///< writes into Bullet's state left not finite (WriteCheck.h)
   /// The piece's pose where it stops a dynamic tool short of the patch's pinned nodes this step;
@@ -115,6 +119,7 @@ struct PairState {
     holdsLast = false;
     detectionMicroseconds = 0;
     responseMicroseconds = 0;
+    feedsDeformable = false;
     stock = StockReason::None;
     invalidPose = false;
     nonFiniteWrites = 0;

@@ -52,6 +52,10 @@ class SoftBodySolverImpl {
   void rememberSpeeds();  // before Bullet's predictMotion: the fastest node of each body
   void rememberStarts();
   void lastWordAfterTransforms();
+  /// Before Bullet's solve: the node contacts of the tools that give their own in the deformable
+  /// world (BulletSettings::deformableNodeContacts) replace Bullet's with them (DeformableBodySolver.cpp).
+  void feedNodeContacts(btSoftBody& body);
+  void feedToolNodeContacts(btSoftBody& body, Tool& tool);
   /// Adds to the hold wrench of the tool whose body is object, if any, an impulse Bullet's solve
   /// applied to it at point over a step of timeStep (s): the deformable world's contacts.
   void addSolverImpulse(const btCollisionObject& object, const btVector3& impulse, const btVector3& point,

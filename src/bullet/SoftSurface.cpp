@@ -93,8 +93,10 @@ void gatherFace(const btSoftBody& softBody, Index faceId, const Aabb& toolBox, P
   std::array<Vec3, 3> starts;
   for (int k = 0; k < 3; ++k) {
     const btSoftBody::Node* node = face.m_n[k];
-    ends[k] = toVec3(node->m_x);
-    starts[k] = toVec3(node->m_q);
+    // The deformable world predicts into m_q and keeps the start in m_x; the classic ones the other
+    // way round.
+    ends[k] = toVec3(state.feedsDeformable ? node->m_q : node->m_x);
+    starts[k] = toVec3(state.feedsDeformable ? node->m_x : node->m_q);
     finite = finite && isFinite(ends[k]) && isFinite(starts[k]);
     motionBox.include(ends[k]);
     motionBox.include(starts[k]);

@@ -15,6 +15,7 @@
 
 #include <BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h>
 #include <BulletDynamics/Dynamics/btRigidBody.h>
+#include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
 #include <BulletSoftBody/btSoftBody.h>
 #include <BulletSoftBody/btSoftBodyInternals.h>
 #include <BulletSoftBody/btSoftBodySolvers.h>
@@ -176,6 +177,14 @@ void handToStock(btSoftBody& softBody, const btCollisionObjectWrapper* toolWrap)
   }
 }
 
+// Whether ThinTool's detection can stand in for Bullet's deformable node contacts of the pair: a
+// body with faces whose rigid contacts are the deformable ones (SDF_RD), and a tool that is not a
+// multibody link, whose contact Bullet builds from the multibody's Jacobians.
+bool feedsDeformableSolve(const btSoftBody& softBody, const btCollisionObject& toolBody) {
+  return softBody.m_faces.size() > 0 && (softBody.m_cfg.collisions & btSoftBody::fCollision::SDF_RD) != 0 &&
+         btMultiBodyLinkCollider::upcast(&toolBody) == nullptr;
+}
+
 // Bullet's own node contact's coefficient (CollideSDF_RS): the soft body's kDF times the rigid
 // body's friction. Frictionless when either is not a number or negative.
 Real pairFriction(const btSoftBody& softBody, const btCollisionObject& toolBody) {
@@ -293,6 +302,11 @@ void ToolAlgorithm::processPiece(PieceStep& step, const btCollisionObjectWrapper
     if (!step.swept) {
       handToStock(step.softBody, toolWrap);  // a swept tool's own pair does it (processCollision)
     }
+    if (state.stock == StockReason::DeformableWorld && feedsDeformableSolve(step.softBody, step.toolBody) &&
+        m_tool.state().options.bullet.deformableNodeContacts && isFinite(step.pose) &&
+        isFinite(step.previousPose)) {
+      detectForDeformableSolve(step);
+    }
     return;
   }
   if (!isFinite(step.pose) || !isFinite(step.previousPose)) {
@@ -325,6 +339,28 @@ void ToolAlgorithm::processValidPiece(PieceStep& step) {
   releasePatch(step.state);
   step.state.detectionMicroseconds = microsecondsBetween(step.start, detected);
   step.state.responseMicroseconds = microsecondsBetween(detected, Clock::now());
+}
+
+// In the deformable world, detection alone: its node contacts go into Bullet's implicit solve in
+// place of Bullet's own (DeformableBodySolver::setConstraints), and the last word follows the solve.
+// Bullet predicts each node's end into m_q there, which the gather reads as the end.
+void ToolAlgorithm::detectForDeformableSolve(PieceStep& step) {
+  PairState& state = step.state;
+  state.stock = StockReason::None;
+  state.feedsDeformable = true;
+  step.start = Clock::now();
+  step.timeStep = step.softBody.m_sst.sdt;
+  step.skinGrowthSpeed = m_tool.state().options.skinGrowthSpeed;
+  prepareBuffers(step);
+  gather(step);
+  detect(step);
+  state.previousPose = step.pose;
+  state.hasPreviousPose = true;
+  if (step.swept) {
+    rememberSweep(step);
+  }
+  releasePatch(state);
+  state.detectionMicroseconds = microsecondsBetween(step.start, Clock::now());
 }
 
 // The face tree, unless the pair scans the faces, and the pair's buffers at the soft body's size,

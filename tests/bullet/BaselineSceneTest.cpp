@@ -103,6 +103,26 @@ TEST(DeformableWorld, ThinToolsLastWordHoldsThePressThatStockLetsThrough) {
   EXPECT_LT(thin.metrics.maxPenetration, 1e-4);
 }
 
+// With ThinTool's node contacts in Bullet's deformable solve (BulletSettings::deformableNodeContacts)
+// the solve itself keeps the ball's nodes in front of the plate: the last word has less to move.
+TEST(DeformableWorld, ThinToolsNodeContactsLeaveTheLastWordLessToMove) {
+  PressSettings settings;
+  settings.scene.world = WorldKind::Deformable;
+  settings.speed = 8;
+  settings.scene.algorithm = Algorithm::ThinTool;
+  const PressResult lastWordAlone = runPress(settings);
+  settings.scene.toolOptions.bullet.deformableNodeContacts = true;
+  const PressResult fed = runPress(settings);
+  std::printf("the last word's moves: %ld with Bullet's node contacts, %ld with ThinTool's\n",
+              lastWordAlone.lastWordMoves, fed.lastWordMoves);
+  EXPECT_GT(fed.maxContacts, 0) << "the plate did press the ball";
+  EXPECT_EQ(fed.metrics.crossed, 0);
+  EXPECT_EQ(fed.metrics.piercedSteps, 0);
+  EXPECT_FALSE(fed.metrics.everInside);
+  EXPECT_LT(fed.metrics.maxPenetration, 1e-4);
+  EXPECT_LT(fed.lastWordMoves, lastWordAlone.lastWordMoves);
+}
+
 TEST(StockPlate, FailsAtOneMetrePerSecondAndSixtyHertz) {
   // The realistic-skin stock set-up (E) and the defaults (A) both let the plate through.
   for (Algorithm stock : {Algorithm::StockE, Algorithm::StockA}) {
