@@ -302,9 +302,10 @@ void ToolAlgorithm::processPiece(PieceStep& step, const btCollisionObjectWrapper
     if (!step.swept) {
       handToStock(step.softBody, toolWrap);  // a swept tool's own pair does it (processCollision)
     }
-    if (state.stock == StockReason::DeformableWorld && feedsDeformableSolve(step.softBody, step.toolBody) &&
-        m_tool.state().options.bullet.deformableNodeContacts && isFinite(step.pose) &&
-        isFinite(step.previousPose)) {
+    const bool feeds = state.stock == StockReason::DeformableWorld && step.swept &&
+                       m_tool.state().options.bullet.deformableNodeContacts &&
+                       feedsDeformableSolve(step.softBody, step.toolBody);
+    if (feeds && isFinite(step.pose) && isFinite(step.previousPose)) {
       detectForDeformableSolve(step);
     }
     return;
@@ -341,9 +342,9 @@ void ToolAlgorithm::processValidPiece(PieceStep& step) {
   step.state.responseMicroseconds = microsecondsBetween(detected, Clock::now());
 }
 
-// In the deformable world, detection alone: its node contacts go into Bullet's implicit solve in
-// place of Bullet's own (DeformableBodySolver::setConstraints), and the last word follows the solve.
-// Bullet predicts each node's end into m_q there, which the gather reads as the end.
+// In the deformable world, swept detection alone: its node contacts go into Bullet's implicit solve
+// in place of Bullet's own (DeformableBodySolver::setConstraints), and the last word follows the
+// solve. Bullet predicts each node's end into m_q there, which the gather reads as the end.
 void ToolAlgorithm::detectForDeformableSolve(PieceStep& step) {
   PairState& state = step.state;
   state.stock = StockReason::None;

@@ -114,14 +114,14 @@ struct BulletSettings {
   bool scanFaces = false;
   /// In btDeformableMultiBodyDynamicsWorld, with thintool::DeformableBodySolver: the tool's node
   /// contacts in Bullet's implicit solve (btSoftBody::DeformableNodeRigidContact) come from
-  /// ThinTool's detection, in place of Bullet's own, which asks the tool's distance field, at one
-  /// instant, how far each node's predicted place lies inside it, and answers with the nearest
-  /// side: a node carried past a thin tool's mid-plane is pushed out of the far side. Each node the
-  /// detection finds heading into the tool grown by the skin gets a contact on the plane of the
-  /// face it comes through, with Bullet's coefficients (the soft body's kDF times the tool's
-  /// friction, kKHR or kCHR). Bullet's face contacts stay Bullet's. Only for a tool that is a
-  /// btRigidBody or a plain btCollisionObject: a multibody link keeps Bullet's node contacts. Off
-  /// by default.
+  /// ThinTool's swept detection (ToolOptions::swept), in place of Bullet's own, which asks the
+  /// tool's distance field, at one instant, how far each node's predicted place lies inside it, and
+  /// answers with the nearest side: a node carried past a thin tool's mid-plane is pushed out of
+  /// the far side. Each node the detection finds heading into the tool grown by the skin gets a
+  /// contact on the plane of the face it comes through, with Bullet's coefficients (the soft body's
+  /// kDF times the tool's friction, kKHR or kCHR). Bullet's face contacts stay Bullet's. Only for a
+  /// tool that is a btRigidBody or a plain btCollisionObject: a multibody link keeps Bullet's node
+  /// contacts. Off by default.
   bool deformableNodeContacts = false;
 };
 
