@@ -434,6 +434,7 @@ PressResult runPress(const PressSettings& settings) {
       result.excludedByCheck2 += d.detection.excludedByCheck2;
       result.maxRemainingPenetration = std::max(result.maxRemainingPenetration, d.maxRemainingPenetration);
       result.lastWordMoves += long(d.lastWord.counts.nodesMoved) + long(d.lastWord.counts.facesMoved);
+      result.deformableNodeContacts += long(d.deformableNodeContacts);
     }
   }
   result.steps = moveSteps + holdSteps;

@@ -149,6 +149,7 @@ struct PressResult {
   long excludedByCheck2 = 0;
   double maxRemainingPenetration = 0;   ///< ThinTool's own measure, for comparison with metrics
   long lastWordMoves = 0;               ///< node and face moves of ThinTool's last word, summed over the steps
+  long deformableNodeContacts = 0;      ///< node contacts ThinTool gave Bullet's deformable solve, summed
 };
 
 PressResult runPress(const PressSettings& settings);

@@ -963,6 +963,7 @@ void SoftBodySolverImpl::beginToolSteps(btScalar timeStep) {
   for (Tool* tool : m_configuration.tools()) {
     tool->state().applied = detail::AppliedImpulse{};
     tool->state().stepLength = timeStep;
+    tool->state().deformableNodeContacts = 0;
   }
 }
 

@@ -179,6 +179,7 @@ const ToolStepReport& Tool::report() {
   }
   contactForce.torquePoint = bodyPose.apply(t.options.force.torquePoint);
   diagnostics.lastWord.holdNodesShared = t.holdNodesShared;
+  diagnostics.deformableNodeContacts = t.deformableNodeContacts;
   t.report.holdWrench.force = t.holdWrench.force;
   t.report.holdWrench.torque = t.holdWrench.torque - cross(bodyPose.translation, t.holdWrench.force);
   t.report.reaction = Wrench{};

@@ -81,6 +81,8 @@ struct ToolState {
   btScalar stepLength = 0;
   Wrench holdWrench;  // this step's, torque about the world's origin
   Index holdNodesShared = 0;
+  /// Node contacts given to Bullet's deformable solve this step (ToolDiagnostics).
+  Index deformableNodeContacts = 0;
   Pose lastFiniteBodyPose;  // the report's frame when the body's transform is not finite
   /// The configuration's record of the current collision pass; null for a tool made without one.
   CollisionPass* pass = nullptr;

@@ -108,6 +108,9 @@ struct ToolDiagnostics {
   double responseMicroseconds = 0;
   /// Pairs handed to Bullet's stock handler, by why (StockPairs).
   StockPairs stockPairs;
+  /// In the deformable world with BulletSettings::deformableNodeContacts: the node contacts
+  /// ThinTool's detection gave Bullet's implicit solve in the step, in place of Bullet's own.
+  Index deformableNodeContacts = 0;
   /// Soft nodes whose correction was not written: not finite, or longer than the step can justify
   /// (the node's own motion back, across the piece and its skin, and the piece's travel). Never
   /// expected.
