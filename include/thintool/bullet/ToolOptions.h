@@ -119,9 +119,10 @@ struct BulletSettings {
   /// answers with the nearest side: a node carried past a thin tool's mid-plane is pushed out of
   /// the far side. Each node the detection finds heading into the tool grown by the skin, still in
   /// front of the plane of the face it comes through at the start of the step, gets a contact on
-  /// that plane, with Bullet's coefficients (the soft body's kDF times the tool's friction, kKHR or
-  /// kCHR); a node the tool's sweep passed over is left to the last word, whose move carries no
-  /// velocity, where the contact would push it out as one. Bullet's face contacts stay Bullet's. Only for a
+  /// that plane, with Bullet's hardness (kKHR or kCHR) and ThinTool's friction (ToolOptions::
+  /// response.friction, off by default; with frictionFromBodies Bullet's coefficient, the soft
+  /// body's kDF times the tool's friction); a node the tool's sweep passed over is left to the last
+  /// word, whose move carries no velocity, where the contact would push it out as one. Bullet's face contacts stay Bullet's. Only for a
   /// tool that is a btRigidBody or a plain btCollisionObject: a multibody link keeps Bullet's node
   /// contacts. Off by default.
   bool deformableNodeContacts = false;
