@@ -323,12 +323,17 @@ void ToolAlgorithm::processPiece(PieceStep& step, const btCollisionObjectWrapper
   processValidPiece(step);
 }
 
-// The stages, top to bottom; each reads what the ones before it left in the step and the pair.
-void ToolAlgorithm::processValidPiece(PieceStep& step) {
+// The step's clock, length and skin growth, and the pair's buffers at the soft body's size.
+void ToolAlgorithm::beginPieceStep(PieceStep& step) {
   step.start = Clock::now();
   step.timeStep = step.softBody.m_sst.sdt;
   step.skinGrowthSpeed = m_tool.state().options.skinGrowthSpeed;
   prepareBuffers(step);
+}
+
+// The stages, top to bottom; each reads what the ones before it left in the step and the pair.
+void ToolAlgorithm::processValidPiece(PieceStep& step) {
+  beginPieceStep(step);
   gather(step);
   detect(step);
   const auto detected = Clock::now();
@@ -349,10 +354,7 @@ void ToolAlgorithm::detectForDeformableSolve(PieceStep& step) {
   PairState& state = step.state;
   state.stock = StockReason::None;
   state.feedsDeformable = true;
-  step.start = Clock::now();
-  step.timeStep = step.softBody.m_sst.sdt;
-  step.skinGrowthSpeed = m_tool.state().options.skinGrowthSpeed;
-  prepareBuffers(step);
+  beginPieceStep(step);
   gather(step);
   detect(step);
   state.previousPose = step.pose;

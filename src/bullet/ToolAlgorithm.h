@@ -53,6 +53,7 @@ class ToolAlgorithm final : public btCollisionAlgorithm {
   void processPiece(PieceStep& step, const btCollisionObjectWrapper* toolWrap);
   // processPiece's work once the poses are known to be finite: the stages below, in order.
   void processValidPiece(PieceStep& step);
+  void beginPieceStep(PieceStep& step);
   void detectForDeformableSolve(PieceStep& step);
   void prepareBuffers(PieceStep& step);
   void gather(PieceStep& step);
