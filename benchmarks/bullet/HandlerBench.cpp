@@ -158,22 +158,20 @@ struct Replay {
     scene->step(poseAt(kPressSteps));
     dispatcher->setNearCallback(&btCollisionDispatcher::defaultNearCallback);
     capturing = nullptr;
-    if (thintool::Tool* tool = scene->tool(); tool != nullptr && softWorld != WorldKind::Deformable) {
+    thintool::Tool* tool = scene->tool();
+    if (tool != nullptr) {
+      const thintool::ToolDiagnostics& d = tool->report().diagnostics;
+      stepLastWordMicroseconds = d.lastWord.microseconds;
+      stepSharedPassMicroseconds = d.lastWord.sharedPassMicroseconds;
+      stepGuardMicroseconds = d.lastWord.energyGuardMicroseconds;
+    }
+    if (tool != nullptr && softWorld != WorldKind::Deformable) {
       const thintool::ToolDiagnostics& d = tool->report().diagnostics;
       stepContacts = static_cast<long>(d.detection.colliding);
       stepDetectMicroseconds = d.detectionMicroseconds;
       stepFacesNear = d.detection.facesGathered;
-      stepLastWordMicroseconds = d.lastWord.microseconds;
-      stepSharedPassMicroseconds = d.lastWord.sharedPassMicroseconds;
-      stepGuardMicroseconds = d.lastWord.energyGuardMicroseconds;
     } else {
       stepContacts = countStockContacts();
-    }
-    if (thintool::Tool* tool = scene->tool(); tool != nullptr && softWorld == WorldKind::Deformable) {
-      const thintool::ToolDiagnostics& d = tool->report().diagnostics;
-      stepLastWordMicroseconds = d.lastWord.microseconds;
-      stepSharedPassMicroseconds = d.lastWord.sharedPassMicroseconds;
-      stepGuardMicroseconds = d.lastWord.energyGuardMicroseconds;
     }
 
     // Back to the collision stage. The trees' volumes still are those of that step's prediction.

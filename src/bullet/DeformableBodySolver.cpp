@@ -98,17 +98,14 @@ void SoftBodySolverImpl::feedToolNodeContacts(btSoftBody& body, Tool& tool) {
   const btScalar bodyInverseMass = rigid != nullptr ? rigid->getInvMass() : btScalar(0);
   static const btMatrix3x3 noInverseInertia(0, 0, 0, 0, 0, 0, 0, 0, 0);
   const btMatrix3x3& inverseInertia = rigid != nullptr ? rigid->getInvInertiaTensorWorld() : noInverseInertia;
-  // ThinTool's friction, as its response in the classic worlds has it: off by default, else Bullet's
-  // coefficient (BulletSettings::frictionFromBodies) or the tool's own. With Bullet's coefficient
-  // always, a plate spinning at 178 rad/s dragged a sheet's nodes to 2.3 km/s (generated seed 377).
-  const FrictionSettings& ownFriction = tool.state().options.response.friction;
-  const btScalar friction = !ownFriction.enabled                           ? btScalar(0)
-                            : tool.state().options.bullet.frictionFromBodies ? body.m_cfg.kDF * object.getFriction()
-                                                                             : btScalar(ownFriction.staticCoefficient);
   const btScalar hardness = object.isStaticOrKinematicObject() ? body.m_cfg.kKHR : body.m_cfg.kCHR;
   for (auto& pair : tool.state().pairs) {
     if (pair->softBody != &body || !pair->feedsDeformable) continue;
     pair->feedsDeformable = false;
+    // ThinTool's friction, as its response in the classic worlds has it (off by default). With
+    // Bullet's coefficient always, a plate spinning at 178 rad/s dragged a sheet's nodes to 2.3 km/s
+    // (generated seed 377).
+    const btScalar friction = btScalar(pair->holdStaticFriction);
     for (const PatchContact& found : pair->detection.contacts) {
       if (found.kind != ContactKind::SoftNode || found.softNodes[0] >= static_cast<Index>(body.m_nodes.size())) {
         continue;

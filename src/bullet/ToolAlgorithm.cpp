@@ -357,11 +357,10 @@ void ToolAlgorithm::detectForDeformableSolve(PieceStep& step) {
   beginPieceStep(step);
   gather(step);
   detect(step);
+  pairFrictionSettings(step);
   state.previousPose = step.pose;
   state.hasPreviousPose = true;
-  if (step.swept) {
-    rememberSweep(step);
-  }
+  rememberSweep(step);
   releasePatch(state);
   state.detectionMicroseconds = microsecondsBetween(step.start, Clock::now());
 }
@@ -462,16 +461,25 @@ void ToolAlgorithm::respond(PieceStep& step) {
   PairState& state = step.state;
   ResponseSettings response = m_tool.state().options.response;
   response.guardNodes = response.guardNodes && !step.swept;  // swept detection tests every node itself
-  if (response.friction.enabled && m_tool.state().options.bullet.frictionFromBodies) {
-    response.friction.staticCoefficient = pairFriction(step.softBody, step.toolBody);
-    response.friction.kineticCoefficient = response.friction.staticCoefficient;
-  }
+  response.friction = pairFrictionSettings(step);
   computeResponse(step.context(), state.patch, state.detection.contacts, response,
                   state.response);
-  state.holdStaticFriction = response.friction.enabled ? response.friction.staticCoefficient : 0;
-  state.holdKineticFriction = response.friction.enabled ? response.friction.kineticCoefficient : 0;
   state.previousPose = step.pose;
   state.hasPreviousPose = true;
+}
+
+// The tool's friction for the pair, the soft body's kDF times the tool body's friction with
+// BulletSettings::frictionFromBodies, and the coefficients the pair's contacts in Bullet's solve
+// take (its holds, or its node contacts in the deformable world): zero without friction.
+FrictionSettings ToolAlgorithm::pairFrictionSettings(PieceStep& step) const {
+  FrictionSettings friction = m_tool.state().options.response.friction;
+  if (friction.enabled && m_tool.state().options.bullet.frictionFromBodies) {
+    friction.staticCoefficient = pairFriction(step.softBody, step.toolBody);
+    friction.kineticCoefficient = friction.staticCoefficient;
+  }
+  step.state.holdStaticFriction = friction.enabled ? friction.staticCoefficient : 0;
+  step.state.holdKineticFriction = friction.enabled ? friction.kineticCoefficient : 0;
+  return friction;
 }
 
 // What the next sweep starts from: where this step leaves each node near the piece, and how far

@@ -8,6 +8,7 @@
 #include <BulletCollision/BroadphaseCollision/btCollisionAlgorithm.h>
 
 #include <thintool/core/Math.h>
+#include <thintool/response/ResponseTypes.h>
 
 class btCollisionObject;
 class btSoftBody;
@@ -59,6 +60,7 @@ class ToolAlgorithm final : public btCollisionAlgorithm {
   void gather(PieceStep& step);
   void detect(PieceStep& step);
   void respond(PieceStep& step);
+  FrictionSettings pairFrictionSettings(PieceStep& step) const;
   void rememberSweep(PieceStep& step);
   void write(PieceStep& step);
   // The dynamic tool stopped short of the pinned nodes of one pair, or of all its pairs with the soft

@@ -87,11 +87,17 @@ TEST(SoftMultiBodyWorld, ThinToolHoldsThePressThatStockLetsThrough) {
 // And in Bullet's deformable world (a mass-spring ball, Bullet's implicit solve with its own rigid
 // contacts inside it): the plate pressed at 8 m/s leaves faces pierced with stock; ThinTool's
 // DeformableBodySolver, whose last word follows the solve, holds it.
-TEST(DeformableWorld, ThinToolsLastWordHoldsThePressThatStockLetsThrough) {
+// The plate pressed at 8 m/s into a mass-spring ball in Bullet's deformable world.
+PressSettings deformablePress(Algorithm algorithm) {
   PressSettings settings;
   settings.scene.world = WorldKind::Deformable;
   settings.speed = 8;
-  settings.scene.algorithm = Algorithm::StockE;
+  settings.scene.algorithm = algorithm;
+  return settings;
+}
+
+TEST(DeformableWorld, ThinToolsLastWordHoldsThePressThatStockLetsThrough) {
+  PressSettings settings = deformablePress(Algorithm::StockE);
   const PressResult stock = runPress(settings);
   EXPECT_GT(stock.metrics.piercedSteps, 0);
   EXPECT_GT(stock.metrics.maxPenetration, 1e-3);
@@ -106,10 +112,7 @@ TEST(DeformableWorld, ThinToolsLastWordHoldsThePressThatStockLetsThrough) {
 // With ThinTool's node contacts in Bullet's deformable solve (BulletSettings::deformableNodeContacts)
 // in place of Bullet's own, the press holds all the same.
 TEST(DeformableWorld, ThinToolsNodeContactsInBulletsSolveHoldThePress) {
-  PressSettings settings;
-  settings.scene.world = WorldKind::Deformable;
-  settings.speed = 8;
-  settings.scene.algorithm = Algorithm::ThinTool;
+  PressSettings settings = deformablePress(Algorithm::ThinTool);
   const PressResult bulletsContacts = runPress(settings);
   settings.scene.toolOptions.bullet.deformableNodeContacts = true;
   const PressResult thinToolsContacts = runPress(settings);
