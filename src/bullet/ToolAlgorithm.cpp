@@ -8,6 +8,7 @@
 #include "ToolReaction.h"
 #include "ToolState.h"
 #include "WriteCheck.h"
+#include "tool/PieceMotion.h"
 
 #include <thintool/bullet/Convert.h>
 #include <thintool/bullet/Tool.h>
@@ -477,6 +478,14 @@ FrictionSettings ToolAlgorithm::pairFrictionSettings(PieceStep& step) const {
     friction.staticCoefficient = pairFriction(step.softBody, step.toolBody);
     friction.kineticCoefficient = friction.staticCoefficient;
   }
+  // A node that sticks goes along the chord of the tool point it sticks to, while the last word
+  // reads a piece that turns more than one of its samples in a step along the arc: there the two
+  // disagree on which side of the piece a stuck face went, and pushed it to and fro until the
+  // rounds ran out with the face pierced (generated seeds 3461 and 7822 with friction: jaws and a
+  // plate turning 78 to 166° a step through pinned sheets; 8609, dynamic jaws, let a node across).
+  // Such a step is frictionless.
+  const Real sample = m_tool.state().options.separation.maxTurnPerSample;
+  if (friction.enabled && PieceMotion(step.previousPose, step.pose, sample).samples() > 1) friction.enabled = false;
   step.state.holdStaticFriction = friction.enabled ? friction.staticCoefficient : 0;
   step.state.holdKineticFriction = friction.enabled ? friction.kineticCoefficient : 0;
   return friction;

@@ -267,6 +267,15 @@ TEST(GeneratedScenes, FrictionLeavesAPressureBodysGroundContactsAsStockSolvesThe
   for (const std::uint64_t seed : {1193u, 3220u, 4450u, 9903u}) expectPasses(seed, "--friction", withFriction);
 }
 
+// Friction lets go in a step in which the piece turns more than one sample of the last word's arc
+// (SeparationSettings::maxTurnPerSample): a node that sticks goes along the chord of its tool point,
+// and the last word, reading the arc, sent its faces back, round after round, until the rounds ran
+// out with a face pierced: jaws turning 78 to 150° a step (3461) and a plate turning 166° (7822)
+// through pinned sheets; dynamic jaws let a node across (8609).
+TEST(GeneratedScenes, FrictionLetsGoInAStepThatTurnsThePiecePastASample) {
+  for (const std::uint64_t seed : {3461u, 7822u, 8609u}) expectPasses(seed, "--friction", withFriction);
+}
+
 // The energy guard watches every step in which a kinematic tool's holds hold a node, not only those
 // in which its response moved one: a hold alone puts its node on the tool's plane in Bullet's solve
 // as hard as a move. Unwatched, such steps threw nodes at 101 to 254 m/s beside tools at 2.9 to
