@@ -6,7 +6,10 @@
 // largest penetration and kinetic energy, and its cost per step, from the same run. tests/stability holds every case to
 // its expectation; this program only reports.
 //
-//   stability [--filter TEXT]   runs the cases whose group or name contains TEXT
+//   stability [--filter TEXT] [--friction]
+//     --filter TEXT   runs the cases whose group or name contains TEXT
+//     --friction      gives each case's tool ThinTool's friction, with Bullet's coefficient (the
+//                     ball's kDF times the tool's friction; off by default)
 
 #include "StressCases.h"
 
@@ -18,11 +21,14 @@ using namespace thintool::scenes;
 
 int main(int argc, char** argv) {
   std::string filter;
+  bool friction = false;
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--filter") == 0 && i + 1 < argc) {
       filter = argv[++i];
+    } else if (std::strcmp(argv[i], "--friction") == 0) {
+      friction = true;
     } else {
-      std::fprintf(stderr, "usage: stability [--filter TEXT]\n");
+      std::fprintf(stderr, "usage: stability [--filter TEXT] [--friction]\n");
       return 2;
     }
   }
@@ -30,10 +36,11 @@ int main(int argc, char** argv) {
               "held energy, 1st half / last quarter (J) | peak force (N) | skipped faces | µs/step |\n");
   std::printf("|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|\n");
   int failures = 0;
-  for (const StressCase& c : stressCases()) {
+  for (StressCase& c : stressCases()) {
     if (!filter.empty() && c.group.find(filter) == std::string::npos && c.name.find(filter) == std::string::npos) {
       continue;
     }
+    if (friction) c.scene.toolOptions.response.friction.enabled = true;
     const StressOutcome o = runStressCase(c);
     std::string why;
     const bool ok = meets(o, c.expectation, &why);
