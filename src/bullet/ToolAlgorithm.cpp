@@ -482,10 +482,14 @@ FrictionSettings ToolAlgorithm::pairFrictionSettings(PieceStep& step) const {
   // reads a piece that turns more than one of its samples in a step along the arc: there the two
   // disagree on which side of the piece a stuck face went, and pushed it to and fro until the
   // rounds ran out with the face pierced (generated seeds 3461 and 7822 with friction: jaws and a
-  // plate turning 78 to 166° a step through pinned sheets; 8609, dynamic jaws, let a node across).
-  // Such a step is frictionless.
+  // plate turning 78 to 166° a step through pinned sheets). Such a step of a kinematic tool is
+  // frictionless. A dynamic tool's turn is the contacts' outcome, friction's among them: a plate
+  // that friction's first steps set spinning, let go once it turned fast, reached 184 m/s (4884).
   const Real sample = m_tool.state().options.separation.maxTurnPerSample;
-  if (friction.enabled && PieceMotion(step.previousPose, step.pose, sample).samples() > 1) friction.enabled = false;
+  if (friction.enabled && !m_tool.state().dynamic() &&
+      PieceMotion(step.previousPose, step.pose, sample).samples() > 1) {
+    friction.enabled = false;
+  }
   step.state.holdStaticFriction = friction.enabled ? friction.staticCoefficient : 0;
   step.state.holdKineticFriction = friction.enabled ? friction.kineticCoefficient : 0;
   return friction;
@@ -526,10 +530,12 @@ void ToolAlgorithm::write(PieceStep& step) {
     // For friction alone, thintool::SoftBodySolver gives it to the holds alone (its solve has begun
     // the step when the tool's step length is known). The whole stage's other contacts are only
     // appended once the response has moved a node: a pressure body on the ground shook at twice
-    // stock's speed with it while a tool was merely near.
+    // stock's speed with it while a tool was merely near. Friction is the pair's in this step
+    // (pairFrictionSettings): a needle turning 124° a step, frictionless in every step but its
+    // first, kept the holds' last say and pierced a sheet (generated seed 623 with friction).
     if (dynamicBody && forceReacts) {
       if (!state.response.corrections.empty()) makeContactsLast(step.softBody);
-    } else if (options.response.friction.enabled) {
+    } else if (state.holdStaticFriction > 0 || state.holdKineticFriction > 0) {
       if (m_tool.state().stepLength > 0) {
         state.holdsLast = true;
       } else if (!state.response.corrections.empty()) {
