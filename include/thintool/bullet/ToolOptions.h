@@ -122,9 +122,9 @@ struct BulletSettings {
   /// that plane, with Bullet's hardness (kKHR or kCHR) and ThinTool's friction (ToolOptions::
   /// response.friction, off by default; with frictionFromBodies Bullet's coefficient, the soft
   /// body's kDF times the tool's friction); a node the tool's sweep passed over is left to the last
-  /// word, whose move carries no velocity, where the contact would push it out as one. Bullet's face contacts stay Bullet's. Only for a
-  /// tool that is a btRigidBody or a plain btCollisionObject: a multibody link keeps Bullet's node
-  /// contacts. Off by default.
+  /// word, whose move carries no velocity, where the contact would push it out as one. Bullet's
+  /// face contacts stay Bullet's. Only for a tool that is a btRigidBody or a plain
+  /// btCollisionObject: a multibody link keeps Bullet's node contacts. Off by default.
   bool deformableNodeContacts = false;
 };
 
