@@ -4,6 +4,7 @@
 #include "ToolReaction.h"
 
 #include "geometry/Ccd.h"
+#include "tool/PieceMotion.h"
 
 #include <thintool/bullet/Convert.h>
 
@@ -17,9 +18,8 @@ namespace thintool::detail {
 
 namespace {
 
-// The arc of a turning tool is sampled every 5° of its turn; the cap only guards a spinning body.
+// The arc of a turning tool is sampled every 5° of its turn.
 constexpr Real kMostTurnPerSample = Real(5) * kPi / 180;
-constexpr int kMostSamples = 64;
 
 // The impulse (N s) a node of inverse mass inverseNodeMass exchanges with a body of inverse
 // effective mass inverseEffectiveMass at the point, the two closing at closing (m/s), or at the
@@ -96,29 +96,31 @@ btScalar stopShortOfPinnedNode(btRigidBody& tool, const ToolModel& piece, const 
   // Bullet integrates it, the node is seen from there; still inside, the point gives the depth back.
   // So does a node the tool's motion would reach on its way, back to the face it reached it by:
   // outside at the end, it may be on the far side (generated seed 4352: jaws turning 50° a step
-  // passed over a sheet's pinned corner). The node stays where it is, so the piece's arc, sampled
-  // every 5° of turn, is where it meets it.
+  // passed over a sheet's pinned corner). The node stays where it is. The way there is read as the
+  // last word and the ground truth read a step, between the two poses: the origin along the chord,
+  // the turn about one axis, sampled every 5°. Integrating a part of the step alone is no guide to
+  // the way: past 45° a step Bullet turns a body by less than its angular velocity says, and not in
+  // proportion to the time, so that a jaw spinning at 130 rad/s was seen from poses off its arc
+  // between the step's two poses, and passed over a pinned corner (generated seed 8609 with
+  // friction).
   const btTransform& bodyNow = tool.getCenterOfMassTransform();
   const btVector3 linear = tool.getLinearVelocity() + pendingLinear;
   const btVector3 angular = tool.getAngularVelocity() + pendingAngular;
-  const auto seenFrom = [&](btScalar fraction) {
-    btTransform bodyThen;
-    btTransformUtil::integrateTransform(bodyNow, linear, angular, step * fraction, bodyThen);
-    return pieceNow.applyInverse(toVec3(bodyNow * bodyThen.invXform(at)));
-  };
-  const Real turn = Real(angular.length() * step);
-  const int samples = std::clamp(static_cast<int>(std::ceil(turn / kMostTurnPerSample)), 1, kMostSamples);
+  btTransform bodyEnd;
+  btTransformUtil::integrateTransform(bodyNow, linear, angular, step, bodyEnd);
+  const Pose bodyStart = toPose(bodyNow);
+  const Pose inBody{bodyStart.rotation.transposed() * pieceNow.rotation,
+                    bodyStart.applyInverse(pieceNow.translation)};
+  const PieceMotion way(bodyStart, toPose(bodyEnd), kMostTurnPerSample, inBody);
   Vec3 previous = pieceNow.applyInverse(node);
   Index reachedBy = kInvalidIndex;
-  for (int k = 1; k <= samples && reachedBy == kInvalidIndex; ++k) {
-    const Vec3 current = seenFrom(btScalar(k) / btScalar(samples));
+  for (int k = 1; k <= way.samples() && reachedBy == kInvalidIndex; ++k) {
+    const Vec3 current = way.at(Real(k) / Real(way.samples())).applyInverse(node);
     const ClipResult path = clipSegmentConvex(piece.planes, 0, previous, current);
     if (path.hit) reachedBy = path.enterPlane;
     previous = current;
   }
-  btTransform bodyEnd;
-  btTransformUtil::integrateTransform(bodyNow, linear, angular, step, bodyEnd);
-  const Vec3 endLocal = pieceNow.applyInverse(toVec3(bodyNow * bodyEnd.invXform(at)));
+  const Vec3 endLocal = way.end().applyInverse(node);
   Real depth = -outsideDistance(piece.planes, endLocal, &plane);
   if (reachedBy != kInvalidIndex) {
     plane = reachedBy;
