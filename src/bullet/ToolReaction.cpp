@@ -112,8 +112,12 @@ btScalar stopShortOfPinnedNode(btRigidBody& tool, const ToolModel& piece, const 
   const Pose inBody{bodyStart.rotation.transposed() * pieceNow.rotation,
                     bodyStart.applyInverse(pieceNow.translation)};
   const PieceMotion way(bodyStart, toPose(bodyEnd), kMostTurnPerSample, inBody);
+  // A node inside already, if only by rounding on the face it lies on, leaves by the face nearest
+  // it now, which the speculative contact above reads: the face nearest where the tool would leave
+  // it can be the far one, and the two pushes then undid each other until a dynamic plate passed
+  // through a pinned corner that lay on its face (generated seed 16707 with friction).
+  Index reachedBy = gap < 0 ? plane : kInvalidIndex;
   Vec3 previous = pieceNow.applyInverse(node);
-  Index reachedBy = kInvalidIndex;
   for (int k = 1; k <= way.samples() && reachedBy == kInvalidIndex; ++k) {
     const Vec3 current = way.at(Real(k) / Real(way.samples())).applyInverse(node);
     const ClipResult path = clipSegmentConvex(piece.planes, 0, previous, current);
