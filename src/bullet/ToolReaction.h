@@ -42,9 +42,10 @@ btScalar applyNodeReaction(DynamicBody& tool, const btVector3& nodePosition, con
 /// A node that cannot give way (inverse mass 0) at node (m, world) stops tool, whose piece is at
 /// pieceNow, short of it over the next step of 1/inverseStep (s): a speculative contact along the
 /// nearest face's normal, as Box2D's, that lets the tool's point there close on the node by the
-/// gap and no more; from inside, or from past a face its motion over that step reaches the node by,
-/// the tool leaves fast enough to be back at the end of that step, as a position solve would move
-/// it. The face's plane bounds the node's side of the piece, so the limit is conservative past an
+/// gap and no more; from inside (back out by the face nearest the node now), or from past a face
+/// its motion over that step reaches the node by (back out by that face), the tool leaves fast
+/// enough to be back at the end of that step, as a position solve would move it. The way is read
+/// between the tool's two poses, along the arc. The face's plane bounds the node's side of the piece, so the limit is conservative past an
 /// edge. forcesPending: the tool's accumulated force and torque are yet to act over that step (in
 /// the collision pass, before Bullet's solver adds them). Returns the impulse applied (N s).
 btScalar stopShortOfPinnedNode(btRigidBody& tool, const ToolModel& piece, const Pose& pieceNow, const Vec3& node,
