@@ -45,9 +45,10 @@ btScalar applyNodeReaction(DynamicBody& tool, const btVector3& nodePosition, con
 /// gap and no more; from inside (back out by the face nearest the node now), or from past a face
 /// its motion over that step reaches the node by (back out by that face), the tool leaves fast
 /// enough to be back at the end of that step, as a position solve would move it. The way is read
-/// between the tool's two poses, along the arc. The face's plane bounds the node's side of the piece, so the limit is conservative past an
-/// edge. forcesPending: the tool's accumulated force and torque are yet to act over that step (in
-/// the collision pass, before Bullet's solver adds them). Returns the impulse applied (N s).
+/// between the tool's two poses, along the arc. The face's plane bounds the node's side of the
+/// piece, so the limit is conservative past an edge. forcesPending: the tool's accumulated force
+/// and torque are yet to act over that step (in the collision pass, before Bullet's solver adds
+/// them). Returns the impulse applied (N s).
 btScalar stopShortOfPinnedNode(btRigidBody& tool, const ToolModel& piece, const Pose& pieceNow, const Vec3& node,
                                Real inverseStep, bool forcesPending, AppliedImpulse* applied = nullptr);
 

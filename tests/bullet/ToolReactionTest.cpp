@@ -76,6 +76,14 @@ TEST(ToolReaction, ANodeThatCannotGiveWayStopsTheTool) {
   EXPECT_NEAR(tool->getLinearVelocity().y(), 0, 1e-5);
 }
 
+// Where the tool stands after the step it now takes, as Bullet integrates it.
+btTransform endOfStep(const btRigidBody& tool) {
+  btTransform end;
+  btTransformUtil::integrateTransform(tool.getCenterOfMassTransform(), tool.getLinearVelocity(),
+                                      tool.getAngularVelocity(), kStep, end);
+  return end;
+}
+
 // Where a body stands at fraction t of a step from start to end, read as the ground truth reads a
 // step: the origin along the chord, the turn by Bullet's slerp.
 btTransform between(const btTransform& start, const btTransform& end, btScalar t) {
@@ -86,8 +94,7 @@ btTransform between(const btTransform& start, const btTransform& end, btScalar t
 // takes, as Bullet integrates it, read between its two poses at 200 instants.
 double deepestOnTheWay(const btRigidBody& tool, const ToolModel& plate, const Vec3& node) {
   const btTransform start = tool.getCenterOfMassTransform();
-  btTransform end;
-  btTransformUtil::integrateTransform(start, tool.getLinearVelocity(), tool.getAngularVelocity(), kStep, end);
+  const btTransform end = endOfStep(tool);
   double deepest = 0;
   for (int k = 1; k <= 200; ++k) {
     const btVector3 seen = between(start, end, btScalar(k) / 200).invXform(toBt(node));
@@ -110,10 +117,7 @@ TEST(ToolReaction, APinnedNodeStopsATurningToolThatWouldSweepThroughIt) {
   stopShortOfPinnedNode(*tool, plate, Pose{}, node, 1 / kStep, false);
 
   EXPECT_LT(deepestOnTheWay(*tool, plate, node), 1e-4);
-  btTransform end;
-  btTransformUtil::integrateTransform(tool->getCenterOfMassTransform(), tool->getLinearVelocity(),
-                                      tool->getAngularVelocity(), kStep, end);
-  EXPECT_GT(end.invXform(toBt(node)).y(), btScalar(0.01 - 1e-4)) << "the node ends on the far side";
+  EXPECT_GT(endOfStep(*tool).invXform(toBt(node)).y(), btScalar(0.01 - 1e-4)) << "the node ends on the far side";
 }
 
 // Whether the plate (half extents 0.2, 0.01, 0.2 about its origin) carries the node through it
@@ -124,8 +128,7 @@ TEST(ToolReaction, APinnedNodeStopsATurningToolThatWouldSweepThroughIt) {
 // ground truth's tolerance: a stop may leave the plate touching the node.
 bool carriedThrough(const btRigidBody& tool, const Vec3& node) {
   const btTransform start = tool.getCenterOfMassTransform();
-  btTransform end;
-  btTransformUtil::integrateTransform(start, tool.getLinearVelocity(), tool.getAngularVelocity(), kStep, end);
+  const btTransform end = endOfStep(tool);
   const auto acrossWithin = [](const btVector3& from, const btVector3& to) {
     if ((from.y() > 0) == (to.y() > 0)) return false;
     const btVector3 across = from.lerp(to, from.y() / (from.y() - to.y()));
