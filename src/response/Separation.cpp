@@ -265,11 +265,21 @@ class TriangleAxes {
 // step on a pinned sheet (generated seed 877): a node that would end further from where the solver
 // left it than both its place at the start of the step, carried along with the piece, and this
 // move's own length goes to that place instead, with the face's other nodes (the face as it was
-// beside the piece then). False when every node is pinned.
-bool moveFace(SeparationPatch& patch, const std::array<Index, 3>& face, const Vec3& move, const PieceMotion& motion) {
+// beside the piece then). A move's own length counts only up to twice what the step explains (the
+// path of the piece's farthest-going corner, `travel`, and the face's largest own move in the
+// solve): a face stretched across a needle turning 78° a step is as wide as the needle is long, and
+// the way off the needle within its plane took its far nodes 6 m in one step (generated seed 185
+// in the deformable world). False when every node is pinned.
+bool moveFace(SeparationPatch& patch, const std::array<Index, 3>& face, const Vec3& move, const PieceMotion& motion,
+              Real travel) {
   Real weights = 0;
-  for (Index v : face) weights += patch.inverseMasses[v];
+  Real ownMove = 0;
+  for (Index v : face) {
+    weights += patch.inverseMasses[v];
+    if (patch.inverseMasses[v] > 0) ownMove = std::max(ownMove, length(patch.solvedPositions[v] - patch.startPositions[v]));
+  }
   if (!(weights > 0)) return false;
+  const Real explained = 2 * (travel + ownMove);
   std::array<Vec3, 3> moved;
   std::array<Vec3, 3> carried;
   bool beyondCarried = false;
@@ -281,7 +291,8 @@ bool moveFace(SeparationPatch& patch, const std::array<Index, 3>& face, const Ve
     moved[k] = patch.positions[v] + share;
     carried[k] = motion.end().apply(motion.start().applyInverse(patch.startPositions[v]));
     beyondCarried = beyondCarried || lengthSquared(moved[k] - solved) >
-                                         std::max(lengthSquared(carried[k] - solved), lengthSquared(share));
+                                         std::max(lengthSquared(carried[k] - solved),
+                                                  std::min(lengthSquared(share), explained * explained));
   }
   const Vec3 direction = normalizedOrZero(move);
   for (int k = 0; k < 3; ++k) {
@@ -1030,7 +1041,7 @@ SeparationCounts separateFromPiece(const ToolModel& piece, const PieceMotion& mo
         swung = alone && !aboutEdges && swingAboutPinnedNodes(patch, face, piece, end, now, clearance, true);
         if (!swung) continue;
       }
-      if (!swung && !moveFace(patch, face, end.applyToDirection(move), motion)) continue;
+      if (!swung && !moveFace(patch, face, end.applyToDirection(move), motion, travel)) continue;
       for (Index v : face) {
         if (patch.inverseMasses[v] > 0) patch.movedInRound[v] = round;
       }

@@ -506,6 +506,30 @@ TEST(Separation, NoFaceMoveTakesANodePastItsPlaceCarriedWithThePiece) {
   }
 }
 
+// A face hanging over the still plate's rim from two heavy nodes far beyond it, its light node
+// over the plate, which the solver took 7 mm down into the plate. Shares of the way back out would
+// take the light node three times the face's move, 16.5 mm, further than twice anything the step
+// did (the plate stood still, the node moved 7 mm); the face goes back to its place at the start
+// instead, beside the plate, and no node moves further than that.
+TEST(Separation, NoFaceMoveTakesANodeFurtherThanTwiceWhatTheStepExplains) {
+  const ToolModel piece = plate();
+  Patch p;
+  const Vec3 start[3] = {{0.15, 0.012, 0}, {0.65, 0, -0.1}, {0.65, 0, 0.1}};
+  const Vec3 end[3] = {{0.15, 0.005, 0}, start[1], start[2]};
+  const Real inverseMasses[3] = {1000, 1, 1};
+  Index v[3];
+  for (int k = 0; k < 3; ++k) v[k] = p.node(start[k], end[k], inverseMasses[k]);
+  p.patch.faces.push_back({v[0], v[1], v[2]});
+  EXPECT_TRUE(triangleMeetsPiece(piece, end[0], end[1], end[2], 0));
+  const SeparationCounts counts = separateFromPiece(piece, PieceMotion(Pose{}, Pose{}, 0.1), {}, p.patch);
+  EXPECT_EQ(counts.facesPierced, 0u);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_LE(length(p.patch.positions[v[k]] - end[k]), 2 * length(end[0] - start[0])) << "node " << k;
+  }
+  EXPECT_FALSE(triangleMeetsPiece(piece, p.patch.positions[v[0]], p.patch.positions[v[1]], p.patch.positions[v[2]],
+                                  0));
+}
+
 TEST(Separation, TheLastResortCarriesTheFacesThatMeetThePieceWithIt) {
   // The plate comes down 10 cm onto a face 1 cm above it, which the solver leaves inside it, and a
   // second face shares two of its nodes, its third beside the plate and below it. Carried with the
