@@ -259,27 +259,35 @@ class TriangleAxes {
   Vec3 m_anyDirection;
 };
 
+// Twice what the step explains for a face: the path of the piece's farthest-going corner (travel)
+// and the face's largest own move in the soft solve. No move of the last word takes a node of the
+// face further than that on its own account.
+Real explainedReach(const SeparationPatch& patch, const std::array<Index, 3>& face, Real travel) {
+  Real ownMove = 0;
+  for (Index v : face) {
+    if (patch.inverseMasses[v] > 0) {
+      ownMove = std::max(ownMove, length(patch.solvedPositions[v] - patch.startPositions[v]));
+    }
+  }
+  return 2 * (travel + ownMove);
+}
+
 // Moves a face by `move` (world) at its centroid: each node by its share of inverse mass, the
 // smallest mass-weighted change that moves the centroid that far (a plain translation when the
 // masses are equal). Rounds of faces that share nodes add their moves up, to half a metre in a
 // step on a pinned sheet (generated seed 877): a node that would end further from where the solver
 // left it than both its place at the start of the step, carried along with the piece, and this
 // move's own length goes to that place instead, with the face's other nodes (the face as it was
-// beside the piece then). A move's own length counts only up to twice what the step explains (the
-// path of the piece's farthest-going corner, `travel`, and the face's largest own move in the
-// solve): a face stretched across a needle turning 78° a step is as wide as the needle is long, and
-// the way off the needle within its plane took its far nodes 6 m in one step (generated seed 185
-// in the deformable world). False when every node is pinned.
+// beside the piece then). A move's own length counts only up to explainedReach: a face stretched
+// across a needle turning 78° a step is as wide as the needle is long, and the way off the needle
+// within its plane took its far nodes 6 m in one step (generated seed 185 in the deformable world).
+// False when every node is pinned.
 bool moveFace(SeparationPatch& patch, const std::array<Index, 3>& face, const Vec3& move, const PieceMotion& motion,
               Real travel) {
   Real weights = 0;
-  Real ownMove = 0;
-  for (Index v : face) {
-    weights += patch.inverseMasses[v];
-    if (patch.inverseMasses[v] > 0) ownMove = std::max(ownMove, length(patch.solvedPositions[v] - patch.startPositions[v]));
-  }
+  for (Index v : face) weights += patch.inverseMasses[v];
   if (!(weights > 0)) return false;
-  const Real explained = 2 * (travel + ownMove);
+  const Real explained = explainedReach(patch, face, travel);
   std::array<Vec3, 3> moved;
   std::array<Vec3, 3> carried;
   bool beyondCarried = false;
@@ -539,15 +547,12 @@ Real farthestPath(const ToolModel& piece, const PieceMotion& motion, const Pose*
 bool sharesGoTooFar(const SeparationPatch& patch, const std::array<Index, 3>& face, const Vec3& move, Real travel) {
   Real weights = 0;
   Real heaviest = 0;
-  Real ownMove = 0;
   for (Index v : face) {
     weights += patch.inverseMasses[v];
     heaviest = std::max(heaviest, patch.inverseMasses[v]);
-    if (!(patch.inverseMasses[v] > 0)) continue;
-    ownMove = std::max(ownMove, length(patch.solvedPositions[v] - patch.startPositions[v]));
   }
   const Real longestShare = weights > 0 ? length(move) * 3 * heaviest / weights : 0;
-  return longestShare > 2 * (travel + ownMove);
+  return longestShare > explainedReach(patch, face, travel);
 }
 
 // Adds the face's movable nodes to the group (patch.inCluster); says whether any was new.

@@ -389,7 +389,8 @@ TEST(GeneratedScenes, InTheDeformableWorldTheLastWordMovesNoFaceAcrossAWhirlingN
   RunOptions deformable;
   deformable.world = scenes::WorldKind::Deformable;
   const Outcome outcome = runSeed(185, deformable);
-  EXPECT_FALSE(outcome.verdict.failed) << joinReasons(outcome.verdict) << "\n  reproduce: " << reproduce(185, deformable);
+  EXPECT_FALSE(outcome.verdict.failed) << joinReasons(outcome.verdict)
+                                       << "\n  reproduce: " << reproduce(185, deformable);
 }
 
 // With ThinTool's own node contacts in the solve (BulletSettings::deformableNodeContacts) the
