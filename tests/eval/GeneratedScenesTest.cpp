@@ -382,9 +382,9 @@ TEST(GeneratedScenes, InTheDeformableWorldNoContactOfBulletsMakesTheBodyNonFinit
 
 // Bullet's deformable world, seed 185: a needle 0.8 m long turning 78° a step through a sheet.
 // With Bullet's node contacts the solve leaves faces stretched across the needle's turn, whose way
-// off the needle within their own plane took their far nodes 6 m in a step (nodes at 7.7 km/s, the
-// needle's tip at 339 m/s) until a face move counted its own length only up to twice what the step
-// explains (moveFace, Separation.cpp).
+// off the needle within their own plane took their far nodes metres in a step (a node at 7.7 km/s,
+// the needle's tip at 339 m/s) until a face move counted its own length only up to twice what the
+// step explains (moveFace, Separation.cpp).
 TEST(GeneratedScenes, InTheDeformableWorldTheLastWordMovesNoFaceAcrossAWhirlingNeedlesLength) {
   RunOptions deformable;
   deformable.world = scenes::WorldKind::Deformable;
