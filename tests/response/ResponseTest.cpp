@@ -235,6 +235,38 @@ TEST(Response, FrictionSticksWithinTheStaticConeAndSlidesBeyondIt) {
   EXPECT_NEAR(frictionDrag(true, 0.3, 0.2), 0.2 * 0.004, 1e-12) << "2 mm > 0.3 × 4 mm: slides, μk × 4 mm";
 }
 
+TEST(Response, ANodeFrictionHoldsToAStillToolMovesOnlyAcrossTheToolsFace) {
+  // The plate's rim (x = 0.2) pressed into a tilted face: the contact pushes the face along the
+  // face's own normal, which leans 27° from the underside's. A node that sticks does not slide
+  // along the tool's surface: it keeps only the part of its move across the underside. Kept along
+  // the face's normal instead, a held tool's pushes walked nodes sideways step after step.
+  Fixture f;
+  const Vec3 normal = normalizedOrZero({0.5, -1, 0});
+  const Vec3 rim{0.2, 0, 0};
+  const Vec3 along = normalizedOrZero({1, 0.5, 0});  // in the face, across the rim
+  const Index a = f.vertex(rim - along * 0.05 + Vec3{0, 0, -0.05} + normal * -0.002);
+  const Index b = f.vertex(rim - along * 0.05 + Vec3{0, 0, 0.05} + normal * -0.002);
+  const Index c = f.vertex(rim + along * 0.1 + normal * -0.002);
+  PatchContact contact;
+  contact.kind = ContactKind::ToolPoint;
+  contact.softNodeCount = 3;
+  contact.patchVertices = {a, b, c};
+  contact.patchFace = f.face(a, b, c);
+  contact.barycentric = {Real(1) / 3, Real(1) / 3, Real(1) / 3};
+  contact.normal = normal;
+  contact.offset = -(dot(normal, rim) + kSkin);
+  f.contacts.push_back(contact);
+  ResponseSettings settings;
+  settings.friction.enabled = true;
+  f.respond(settings);
+  for (Index v : {a, b, c}) {
+    const Vec3 move = f.finalPosition(v) - f.patch.positions[v];
+    EXPECT_LT(move.y, -1e-4) << "vertex " << v;
+    EXPECT_NEAR(move.x, 0, 1e-12) << "vertex " << v;
+    EXPECT_NEAR(move.z, 0, 1e-12) << "vertex " << v;
+  }
+}
+
 TEST(Response, NodesAlreadyOutsideStayPut) {
   Fixture f;
   const Index a = f.vertex({-0.1, -0.002, -0.1});
