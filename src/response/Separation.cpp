@@ -581,6 +581,29 @@ bool groupGoesThrough(const ToolModel& piece, const PieceMotion& motion, const P
   return false;
 }
 
+// Whether moving the group by shift (piece frame) would carry a face it touches across the piece:
+// clear of it at the start of the step and at the end, but on no one side at both. judgeNode never
+// sees it when the piece passes between the face's nodes: a needle 1.8 mm wide ended a step inside
+// a pressure ellipsoid, no node crossed, no face pierced, after the shortest translation took a
+// face its tip was in over the tip (generated seed 6220 with friction). Read on the chord, and
+// only for a piece that turns no farther than one sample of its arc: under a larger turn the chord
+// alone misreads faces the piece never reached (keptItsSideAlongArc).
+bool groupCarriesAFaceAcross(const ToolModel& piece, const PieceMotion& motion, const SeparationPatch& patch,
+                             const Vec3& shift) {
+  if (motion.samples() > 1) return false;
+  for (const std::array<Index, 3>& face : patch.faces) {
+    if (!anyInGroup(patch, face)) continue;
+    Vec3 start[3];
+    for (int k = 0; k < 3; ++k) start[k] = motion.start().applyInverse(patch.startPositions[face[k]]);
+    if (TriangleAxes(piece, start, nullptr, 0).meets()) continue;
+    Vec3 moved[3];
+    shiftedFace(patch, motion.end(), face, shift, moved);
+    const TriangleAxes after(piece, moved, start, 0);
+    if (!after.meets() && !after.keptItsSide()) return true;
+  }
+  return false;
+}
+
 // Whether moving the group by shift (piece frame) would leave a face it touches meeting a near
 // piece that the face did not meet before. Two jaws with a sheet wound round both each found
 // faces of the same group stuck, and each moved it about half a metre clear of itself and on
@@ -656,14 +679,16 @@ NodeVerdict putNodeOutside(const ToolModel& piece, const PieceMotion& motion, co
 // want a shared node on opposite sides (the fan of faces round a node a needle runs through,
 // generated seed 225) then move as one, the way none of them alone can. The translation is the
 // shortest along the piece's face normals and the faces' way back (shortestClearingShift); it
-// must not take a node through the piece since the step's start (judgeNode), and a face with only
-// some of its nodes in the group must come clear too, else its nodes join the group and the search
-// runs again. A face with a pinned node comes clear only beyond a plane its pinned node is beyond
-// (swingShift), and the direction that leaves fewest of those pierced (heldFaces) goes first: on
-// pinned sheets, the shortest translation left the corner faces across the tool (seed 1804).
-// Nor may a translation longer than twice the path of the piece's farthest-going corner leave a
-// face in a near piece that it did not meet before (pushesIntoNearPiece): a shorter one is what
-// the step's motion explains, and the pieces' passes settle what it pushes into another piece.
+// must not take a node through the piece since the step's start (judgeNode), nor a face across it
+// (groupCarriesAFaceAcross), and a face with only some of its nodes in the group must come clear
+// too, else its nodes join the group and the search runs again. A face with a pinned node comes
+// clear only beyond a plane its pinned node is beyond (swingShift), and the direction that leaves
+// fewest of those pierced (heldFaces) goes first: on pinned sheets, the shortest translation left
+// the corner faces across the tool (seed 1804). Nor may a translation, however short, leave a
+// face in a near piece that it did not meet before (pushesIntoNearPiece): the pieces' passes do
+// not settle that. Between jaws on pinned sheets, such faces were still in the other jaw at the
+// end of the step (seed 8609 with friction; seeds 13671, 26887, 35337, 39901, 46844, 47422 and
+// 48347, jaws turning 43 to 154° a step).
 // Each face that a translation leaves pierced brings its nodes in; on a sheet a needle whirls
 // through (seeds 623 and 1603, needles turning 124° and 75° a step), a group took one more node
 // with each translation and needed up to 16 of them, as many as carryFacesWithPiece allows.
@@ -673,7 +698,6 @@ void moveStuckFacesTogether(const ToolModel& piece, const PieceMotion& motion, c
   constexpr int kMostGrowths = 16;
   const Pose& end = motion.end();
   const Index vertexCount = patch.vertexCount();
-  const Real travel = near.empty() ? 0 : farthestPath(piece, motion, poses);
   patch.inCluster.assign(vertexCount, 0);
   Vec3 back;
   for (const std::array<Index, 3>& face : patch.faces) {
@@ -698,7 +722,8 @@ void moveStuckFacesTogether(const ToolModel& piece, const PieceMotion& motion, c
       const int held = heldFaces(piece, end, patch, direction * shift);
       if (held > bestHeld || (held == bestHeld && !(shift < bestShift))) continue;
       if (groupGoesThrough(piece, motion, poses, patch, direction * shift, clearance)) continue;
-      if (shift > 2 * travel && pushesIntoNearPiece(near, end, patch, direction * shift)) continue;
+      if (groupCarriesAFaceAcross(piece, motion, patch, direction * shift)) continue;
+      if (pushesIntoNearPiece(near, end, patch, direction * shift)) continue;
       bestShift = shift;
       bestDirection = direction;
       bestHeld = held;

@@ -57,9 +57,9 @@
 ///   waits for the slide below.
 /// - Face moves and node moves alternate (Gauss–Seidel) for at most `maxRounds`, nodes last. When
 ///   the rounds run out with faces still pierced (faces that want a shared node on opposite
-///   sides), their nodes move together by the shortest translation that clears them all; one
-///   longer than twice the path of the piece's farthest-going corner pushes no face into another
-///   piece near it (the other jaw), where the two would move the group on and on.
+///   sides), their nodes move together by the shortest translation that clears them all, carries
+///   none of their faces across the piece and pushes none into another piece near it (the other
+///   jaw), where the two would move the group on and on.
 /// - A face with a pinned node left pierced after that lies across a rim: the piece swept past the
 ///   pinned node and left its neighbours on the far side. Its free nodes slide together, along the
 ///   piece's face and past the rim, by the shortest translation (along a face normal of the piece
