@@ -68,6 +68,19 @@ struct Fixture {
     c.offset = -dot(normal, pose.apply(model.positions[c.toolNode]) + normal * kSkin);
     contacts.push_back(c);
   }
+  // A contact of a tool point with a face's centroid: the face must end in front of the plane
+  // dot(normal, x) + offset = 0.
+  void toolPoint(Index faceIndex, const Vec3& normal, Real offset) {
+    PatchContact c;
+    c.kind = ContactKind::ToolPoint;
+    c.softNodeCount = 3;
+    c.patchVertices = patch.faces[faceIndex];
+    c.patchFace = faceIndex;
+    c.barycentric = {Real(1) / 3, Real(1) / 3, Real(1) / 3};
+    c.normal = normal;
+    c.offset = offset;
+    contacts.push_back(c);
+  }
   // A swept contact of soft node v with the plate's underside, y = 0, grown by the skin.
   PatchContact& underside(Index v) {
     PatchContact c;
@@ -157,15 +170,7 @@ TEST(Response, NoCorrectionEndsInsideTheTool) {
   const Index a = f.vertex({-0.1, -0.005, -0.1});
   const Index b = f.vertex({0.1, -0.005, -0.1});
   const Index c = f.vertex({0, -0.005, 0.1});
-  PatchContact contact;
-  contact.kind = ContactKind::ToolPoint;
-  contact.softNodeCount = 3;
-  contact.patchVertices = {a, c, b};
-  contact.patchFace = f.face(a, c, b);
-  contact.barycentric = {Real(1) / 3, Real(1) / 3, Real(1) / 3};
-  contact.normal = {0, 1, 0};
-  contact.offset = -0.01;
-  f.contacts.push_back(contact);
+  f.toolPoint(f.face(a, c, b), {0, 1, 0}, -0.01);
   f.respond();
   for (Index v : {a, b, c}) {
     EXPECT_NEAR(f.finalPosition(v).y, -kSkin, 1e-12) << "vertex " << v;
@@ -247,15 +252,7 @@ TEST(Response, ANodeFrictionHoldsToAStillToolMovesOnlyAcrossTheToolsFace) {
   const Index a = f.vertex(rim - along * 0.05 + Vec3{0, 0, -0.05} + normal * -0.002);
   const Index b = f.vertex(rim - along * 0.05 + Vec3{0, 0, 0.05} + normal * -0.002);
   const Index c = f.vertex(rim + along * 0.1 + normal * -0.002);
-  PatchContact contact;
-  contact.kind = ContactKind::ToolPoint;
-  contact.softNodeCount = 3;
-  contact.patchVertices = {a, b, c};
-  contact.patchFace = f.face(a, b, c);
-  contact.barycentric = {Real(1) / 3, Real(1) / 3, Real(1) / 3};
-  contact.normal = normal;
-  contact.offset = -(dot(normal, rim) + kSkin);
-  f.contacts.push_back(contact);
+  f.toolPoint(f.face(a, b, c), normal, -(dot(normal, rim) + kSkin));
   ResponseSettings settings;
   settings.friction.enabled = true;
   f.respond(settings);
