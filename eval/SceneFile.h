@@ -154,8 +154,9 @@ struct SceneSpec {
   std::vector<ToolSpec> tools;
   AlgorithmKind algorithm = AlgorithmKind::Swept;
   bool force = false;          ///< ThinTool: the Hunt–Crossley force (force error needs it)
-  /// ThinTool's Coulomb friction at the tool. Unset, the library's default (off); true, on, with
-  /// ThinTool's own coefficients unless frictionFromBodies; false, off.
+  /// ThinTool's Coulomb friction at the tool. Unset, the library's default (on, each pair's
+  /// coefficient from the bodies); true, on, with ThinTool's own coefficients unless
+  /// frictionFromBodies; false, off.
   std::optional<bool> friction;
   /// With friction on: each pair's coefficient from the bodies, as stock Bullet's node contact (the
   /// soft body's kDF times the tool's friction, BulletSettings::frictionFromBodies).

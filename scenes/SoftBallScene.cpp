@@ -239,10 +239,12 @@ SoftBallScene::SoftBallScene(const SceneSettings& settings) : m_settings(setting
   if (thinTool) {
     thintool::ToolOptions options = settings.toolOptions;
     options.swept = options.swept && settings.algorithm == Algorithm::ThinTool;
-    // The paper's algorithm as published has no last word and no skin regrowth (ToolOptions::paper()).
+    // The paper's algorithm as published has no last word, no skin regrowth and no friction
+    // (ToolOptions::paper()).
     options.separation.enabled = options.separation.enabled && settings.algorithm == Algorithm::ThinTool;
     if (settings.algorithm == Algorithm::ThinToolPaper) {
       options.skinGrowthSpeed = std::numeric_limits<thintool::Real>::infinity();
+      options.response.friction.enabled = false;
     }
     try {
       m_thinTool = &thintool::addTool(m_world->world(), *m_tool, options);

@@ -49,8 +49,9 @@ inside the soft body, pierced faces, penetration deeper than 0.1 mm, non-finite 
                      contacts (BulletSettings::deformableNodeContacts)
   --follow-arc       swept detection confirms a node's chord on a turning tool's arc
                      (ToolOptions::sweptFollowsArc)
-  --friction         ThinTool's friction on, with stock Bullet's coefficient: the soft body's kDF
-                     times the tool's friction (FrictionSettings, BulletSettings::frictionFromBodies)
+  --frictionless     ThinTool's friction off (FrictionSettings); on by default, with stock
+                     Bullet's coefficient: the soft body's kDF times the tool's friction
+                     (BulletSettings::frictionFromBodies)
   --soft-multibody   build each scene in btSoftMultiBodyDynamicsWorld (PyBullet's soft world)
                      instead of btSoftRigidDynamicsWorld
   --deformable       build each scene in btDeformableMultiBodyDynamicsWorld: the soft body a
@@ -133,7 +134,7 @@ int main(int argc, char** argv) {
   bool scanFaces = false;
   bool deformableContacts = false;
   bool followArc = false;
-  bool friction = false;
+  bool frictionless = false;
   bool softMultiBody = false;
   bool deformable = false;
   bool withinThickness = false;
@@ -176,8 +177,8 @@ int main(int argc, char** argv) {
         deformableContacts = true;
       } else if (arg == "--follow-arc") {
         followArc = true;
-      } else if (arg == "--friction") {
-        friction = true;
+      } else if (arg == "--frictionless") {
+        frictionless = true;
       } else if (arg == "--soft-multibody") {
         softMultiBody = true;
       } else if (arg == "--deformable") {
@@ -228,10 +229,7 @@ int main(int argc, char** argv) {
       scene.scanFaces = scanFaces;
       scene.deformableNodeContacts = deformableContacts;
       scene.followArc = followArc;
-      if (friction) {
-        scene.friction = true;
-        scene.frictionFromBodies = true;
-      }
+      if (frictionless) scene.friction = false;
       if (verbose) std::printf("%s\n", describeScene(scene).c_str());
       RunOptions options;
       using thintool::scenes::WorldKind;
@@ -271,7 +269,7 @@ int main(int argc, char** argv) {
                 static_cast<unsigned long long>(seed), algorithmKey(algorithm), lastWord ? "" : " --no-last-word",
                 holds ? "" : " --no-holds", reach.c_str(), energyGuard ? "" : " --no-energy-guard",
                 boundForces ? "" : " --no-force-bound", scanFaces ? " --scan-faces" : "", followArc ? " --follow-arc" : "",
-                friction ? " --friction" : "", softMultiBody ? " --soft-multibody" : "",
+                frictionless ? " --frictionless" : "", softMultiBody ? " --soft-multibody" : "",
                 deformable ? " --deformable" : "", deformableContacts ? " --deformable-contacts" : "",
                 generatorOptions.bulletKinds ? " --bullet-kinds" : "",
                 withinThickness ? " --within-thickness" : "");

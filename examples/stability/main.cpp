@@ -6,10 +6,10 @@
 // largest penetration and kinetic energy, and its cost per step, from the same run. tests/stability holds every case to
 // its expectation; this program only reports.
 //
-//   stability [--filter TEXT] [--friction]
+//   stability [--filter TEXT] [--frictionless]
 //     --filter TEXT   runs the cases whose group or name contains TEXT
-//     --friction      gives each case's tool ThinTool's friction, with Bullet's coefficient (the
-//                     ball's kDF times the tool's friction; off by default)
+//     --frictionless  turns ThinTool's friction off in each case's tool (on by default, with
+//                     Bullet's coefficient: the ball's kDF times the tool's friction)
 
 #include "StressCases.h"
 
@@ -21,14 +21,14 @@ using namespace thintool::scenes;
 
 int main(int argc, char** argv) {
   std::string filter;
-  bool friction = false;
+  bool frictionless = false;
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--filter") == 0 && i + 1 < argc) {
       filter = argv[++i];
-    } else if (std::strcmp(argv[i], "--friction") == 0) {
-      friction = true;
+    } else if (std::strcmp(argv[i], "--frictionless") == 0) {
+      frictionless = true;
     } else {
-      std::fprintf(stderr, "usage: stability [--filter TEXT] [--friction]\n");
+      std::fprintf(stderr, "usage: stability [--filter TEXT] [--frictionless]\n");
       return 2;
     }
   }
@@ -40,7 +40,7 @@ int main(int argc, char** argv) {
     if (!filter.empty() && c.group.find(filter) == std::string::npos && c.name.find(filter) == std::string::npos) {
       continue;
     }
-    if (friction) c.scene.toolOptions.response.friction.enabled = true;
+    if (frictionless) c.scene.toolOptions.response.friction.enabled = false;
     const StressOutcome o = runStressCase(c);
     std::string why;
     const bool ok = meets(o, c.expectation, &why);

@@ -109,8 +109,8 @@ bool shareContactMove(const PatchContact& contact, const std::vector<Real>& inve
 // The normal (world) of the tool face that points most nearly along direction. Friction reads a
 // node's slip in that face's plane and its normal move across it: read across the soft face's
 // normal that a tool's edge or corner pushed the node along, its plane turned from face to face,
-// and each step's push, kept whole by sticking, fed a ball held under a plate (`stability
-// --friction`, 1/10,000 s: the held energy grew from 0.61 to 3.2 J).
+// and each step's push, kept whole by sticking, fed a ball held under a plate (`stability`,
+// 1/10,000 s: the held energy grew from 0.61 to 3.2 J).
 Vec3 toolFaceAlong(const StepContext& step, const Vec3& direction) {
   Vec3 best = direction;
   Real bestDot = -std::numeric_limits<Real>::max();

@@ -193,7 +193,9 @@ Drop dropOntoABall(SoftMultiBodyWorld& w, btCollisionObject& toolBody, const btB
 
 void expectRestsOnTheBall(const Drop& drop) {
   EXPECT_GT(drop.height, 0.6) << "the tool rests on the ball, not on the ground";
-  EXPECT_LT(drop.height, 1.0) << "the tool reached the ball";
+  // Resting on the ball's top (1 m) untouched would leave the plate's centre its half thickness and
+  // the skin higher (1.03 m); friction, on by default, keeps the top from spreading under the plate.
+  EXPECT_LT(drop.height, 1.0 + 0.01 + 0.02) << "the tool pressed into the ball";
   EXPECT_EQ(drop.deepest, 0) << "no soft node inside the tool at the end of a step";
   EXPECT_NEAR(drop.reacted, drop.expected, 0.1 * drop.weightTime) << "the reported reaction is what moved the tool";
 }

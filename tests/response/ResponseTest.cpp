@@ -94,7 +94,13 @@ struct Fixture {
     return contacts.back();
   }
   StepContext context(const Pose& previous) const { return {model, previous, pose, kDt, kSkin, skinGrowthSpeed}; }
-  void respond(const ResponseSettings& settings = {}, const Pose* previous = nullptr) {
+  // The response's geometry alone unless a test asks for friction (on by default).
+  static ResponseSettings frictionless() {
+    ResponseSettings settings;
+    settings.friction.enabled = false;
+    return settings;
+  }
+  void respond(const ResponseSettings& settings = frictionless(), const Pose* previous = nullptr) {
     computeResponse(context(previous != nullptr ? *previous : pose), patch, contacts, settings, result);
   }
   Vec3 finalPosition(Index v) const {

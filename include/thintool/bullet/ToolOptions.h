@@ -98,10 +98,10 @@ struct BulletSettings {
   /// pressure (kPR·area/volume) throws it apart. Empty: the whole plane. Runs only in a world whose
   /// soft-body solver is a thintool::SoftBodySolver.
   std::optional<Real> holdPlaneReach;
-  /// With friction (response.friction.enabled): μs = μk = the soft body's m_cfg.kDF × the tool
-  /// body's getFriction(), per pair, as stock Bullet's node contact (btSoftBodyInternals.h,
-  /// CollideSDF_RS), which lets a node stick while its tangential motion is within that times its
-  /// normal motion. Off: response.friction's two coefficients.
+  /// With friction (response.friction.enabled, the default): μs = μk = the soft body's m_cfg.kDF
+  /// × the tool body's getFriction(), per pair, as stock Bullet's node contact
+  /// (btSoftBodyInternals.h, CollideSDF_RS), which lets a node stick while its tangential motion is
+  /// within that times its normal motion. Off: response.friction's two coefficients.
   bool frictionFromBodies = true;
   /// Swept detection: find the soft faces near the tool by reading every face's three nodes each
   /// step (their start, predicted end and last sweep's end), instead of walking the soft body's
@@ -120,7 +120,7 @@ struct BulletSettings {
   /// the far side. Each node the detection finds heading into the tool grown by the skin, still in
   /// front of the plane of the face it comes through at the start of the step, gets a contact on
   /// that plane, with Bullet's hardness (kKHR or kCHR) and ThinTool's friction (ToolOptions::
-  /// response.friction, off by default; with frictionFromBodies Bullet's coefficient, the soft
+  /// response.friction, on by default; with frictionFromBodies Bullet's coefficient, the soft
   /// body's kDF times the tool's friction); a node the tool's sweep passed over is left to the last
   /// word, whose move carries no velocity, where the contact would push it out as one. Bullet's
   /// face contacts stay Bullet's. Only for a tool that is a btRigidBody or a plain

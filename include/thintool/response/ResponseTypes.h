@@ -16,12 +16,13 @@ enum class ResponseKind { Constraint, PaperForce, None };
 /// Macklin et al., "Unified particle physics for real-time applications", 2014, §6.1): a moved
 /// node's tangential motion relative to the tool's surface is undone while it is within
 /// staticCoefficient × the node's normal move (it sticks), and reduced by kineticCoefficient × that
-/// move otherwise (it slides). The normal move stands for the normal force, N = m·d/dt². Off, it
-/// costs nothing.
+/// move otherwise (it slides). The normal move stands for the normal force, N = m·d/dt². On by
+/// default, as stock Bullet's soft–rigid contact has friction; off, it costs nothing.
 ///
-/// The Bullet glue can put its own coefficients in their place (BulletSettings::frictionFromBodies).
+/// The Bullet glue puts its own coefficients in their place by default, stock Bullet's
+/// (BulletSettings::frictionFromBodies).
 struct FrictionSettings {
-  bool enabled = false;
+  bool enabled = true;
   Real staticCoefficient = 0.8;   ///< μs (>= 0)
   Real kineticCoefficient = 0.6;  ///< μk (>= 0, <= μs)
 };
