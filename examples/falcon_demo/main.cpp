@@ -7,10 +7,13 @@
 // and its plot (PNG).
 //
 //   falcon_demo [--trajectory FILE] [--fast] [--out DIR] [--falcon FIRMWARE.bin] [--no-response]
+//               [--friction]
 //
 // --no-response turns the collision stage's response off (ResponseKind::None): the nodes are put
 // back out of the spatula by the last word alone, after Bullet's solve, with no solver holds; to
-// compare how steady the force is with and without the response.
+// compare how steady the force is with and without the response. --friction gives the spatula
+// the library's default friction (Bullet's coefficient); the paper's spatula, and the demo's, has
+// none.
 
 #include "HapticDemo.h"
 #include "Plot.h"
@@ -62,7 +65,8 @@ std::string plotScript(const std::string& csv, const std::string& png) {
 }
 
 int usage() {
-  std::cerr << "usage: falcon_demo [--trajectory FILE] [--fast] [--out DIR] [--falcon FIRMWARE.bin] [--no-response]\n";
+  std::cerr << "usage: falcon_demo [--trajectory FILE] [--fast] [--out DIR] [--falcon FIRMWARE.bin] [--no-response]"
+               " [--friction]\n";
   return 2;
 }
 
@@ -74,6 +78,7 @@ int main(int argc, char** argv) {
   std::string firmware;
   bool fast = false;
   bool noResponse = false;
+  bool friction = false;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--trajectory" && i + 1 < argc) {
@@ -86,6 +91,8 @@ int main(int argc, char** argv) {
       fast = true;
     } else if (arg == "--no-response") {
       noResponse = true;
+    } else if (arg == "--friction") {
+      friction = true;
     } else {
       return usage();
     }
@@ -96,6 +103,7 @@ int main(int argc, char** argv) {
   if (noResponse) {
     settings.toolOptions.response.kind = ResponseKind::None;
   }
+  settings.toolOptions.response.friction.enabled = friction;
   std::unique_ptr<haptics::Device> device;
   try {
     if (!firmware.empty()) {
