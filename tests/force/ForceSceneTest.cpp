@@ -89,9 +89,13 @@ TEST(ForceScene, OffReportsNothing) {
   EXPECT_GT(scene->tool()->report().diagnostics.detection.colliding, 0u);
 }
 
+// Frictionless, as the paper's spatula: with friction (the default) the plate carried by the force
+// still moved at 0.16 m/s after 5 s in Bullet's float64 build, within 0.05 m/s in its float build
+// (docs/design.md, limits).
 TEST(ForceScene, DynamicToolIsCarriedByTheForce) {
   SceneSettings settings;
   settings.toolOptions = withForce(DeformationMeasure::Indentation);
+  settings.toolOptions.response.friction.enabled = false;
   settings.timeStep = 1.0 / 240;
   SoftBallScene scene(settings);
   scene.settle();
