@@ -234,17 +234,17 @@ TEST(GeneratedScenes, AHoldPlaneReachLetsASqueezedPressureBodyBulgePastTheTool) 
                                 << " --no-energy-guard --hold-reach 4 --frictionless";
 }
 
+void asGenerated(SceneSpec&) {}
+
 // One seed with an option the scene file has (set), which must pass; option is its command-line
 // form, for the reproducing command.
-void expectPasses(std::uint64_t seed, const char* option, void (*set)(SceneSpec&)) {
+void expectPasses(std::uint64_t seed, const char* option = "", void (*set)(SceneSpec&) = asGenerated) {
   SceneSpec scene = generateScene(seed, kScenes);
   set(scene);
   const Verdict verdict = runAndJudge(scene);
   EXPECT_FALSE(verdict.failed) << "seed " << seed << ": " << joinReasons(verdict) << "\n  reproduce: "
-                               << reproduce(seed) << " " << option;
+                               << reproduce(seed) << (*option != 0 ? " " : "") << option;
 }
-
-void asGenerated(SceneSpec&) {}
 
 // The energy guard reads a light pressure body's own speed from the steps before, not from Bullet's
 // prediction, which applies the pressure that the links take back in the solve (predicted 49 to
@@ -254,12 +254,12 @@ void asGenerated(SceneSpec&) {}
 // the guard's fallback was the predicted speed: nodes at 67, 70 and 3,340 m/s. 6261 with its faces
 // scanned fails with friction: docs/results/generated-scenes.md, what is left.
 TEST(GeneratedScenes, TheEnergyGuardKeepsPressureBodiesToTheirOwnSpeed) {
-  expectPasses(189, "", asGenerated);
+  expectPasses(189);
   expectPasses(6261, "--scan-faces --frictionless", [](SceneSpec& scene) {
     scene.scanFaces = true;
     scene.friction = false;
   });
-  expectPasses(5587, "", asGenerated);
+  expectPasses(5587);
 }
 
 // With friction, the holds alone are solved again after the links in each position iteration
@@ -269,7 +269,7 @@ TEST(GeneratedScenes, TheEnergyGuardKeepsPressureBodiesToTheirOwnSpeed) {
 // kinematic jaws at 0.01 to 0.5 m/s (1193, 3220, 4450) and a pressure vessel beside a needle at
 // 0.16 m/s (9903). Seeds 2148, 4092, 5044 and 7343 failed the same way.
 TEST(GeneratedScenes, FrictionLeavesAPressureBodysGroundContactsAsStockSolvesThem) {
-  for (const std::uint64_t seed : {1193u, 3220u, 4450u, 9903u}) expectPasses(seed, "", asGenerated);
+  for (const std::uint64_t seed : {1193u, 3220u, 4450u, 9903u}) expectPasses(seed);
 }
 
 // Friction lets go in a step in which a kinematic tool turns a piece more than one sample of the
@@ -281,7 +281,7 @@ TEST(GeneratedScenes, FrictionLeavesAPressureBodysGroundContactsAsStockSolvesThe
 // pierced a sheet (623). A dynamic tool keeps its friction however it turns: a plate that friction
 // set spinning in its first steps, let go, reached 184 m/s (4884).
 TEST(GeneratedScenes, FrictionLetsGoInAStepThatTurnsAKinematicPiecePastASample) {
-  for (const std::uint64_t seed : {3461u, 7822u, 623u, 4884u}) expectPasses(seed, "", asGenerated);
+  for (const std::uint64_t seed : {3461u, 7822u, 623u, 4884u}) expectPasses(seed);
 }
 
 // A dynamic tool's stop at the pinned nodes it meets. Light jaws spun to 130 rad/s passed over a
@@ -292,7 +292,7 @@ TEST(GeneratedScenes, FrictionLetsGoInAStepThatTurnsAKinematicPiecePastASample) 
 // the stop sent it out by the face nearest where the plate would leave it, the top one, against the
 // push that kept the plate below it (16707).
 TEST(GeneratedScenes, ADynamicToolStopsShortOfPinnedNodesOnItsArc) {
-  expectPasses(16707, "", asGenerated);
+  expectPasses(16707);
 }
 
 // When the last word's rounds run out, the faces still pierced move together by one translation
@@ -304,8 +304,8 @@ TEST(GeneratedScenes, ADynamicToolStopsShortOfPinnedNodesOnItsArc) {
 // (8609; seeds 13671, 26887, 35337, 39901, 46844, 47422 and 48347, found frictionless, in
 // eval/generated/regressions.txt).
 TEST(GeneratedScenes, FacesMovedTogetherKeepTheirSideAndStayOutOfTheOtherJaw) {
-  expectPasses(6220, "", asGenerated);
-  expectPasses(8609, "", asGenerated);
+  expectPasses(6220);
+  expectPasses(8609);
 }
 
 // The energy guard watches every step in which a kinematic tool's holds hold a node, not only those
@@ -315,7 +315,7 @@ TEST(GeneratedScenes, FacesMovedTogetherKeepTheirSideAndStayOutOfTheOtherJaw) {
 // sheet on a needle (12115), a pressure vessel under a blade (12468) and a tetrahedral box under a
 // 1 mm plate (13958).
 TEST(GeneratedScenes, TheEnergyGuardWatchesStepsInWhichOnlyTheHoldsAct) {
-  for (const std::uint64_t seed : {35634u, 12115u, 12468u, 13958u}) expectPasses(seed, "", asGenerated);
+  for (const std::uint64_t seed : {35634u, 12115u, 12468u, 13958u}) expectPasses(seed);
 }
 
 // A kinematic ball 477 mm across spinning 164° a step beside a pinned sheet, with Bullet's kinds
