@@ -176,7 +176,8 @@ struct SoftBallScene::Bullet {
   std::unique_ptr<btRigidBody> tool;
 };
 
-SoftBallScene::SoftBallScene(const SceneSettings& settings) : m_settings(settings), m_bullet(new Bullet) {
+SoftBallScene::SoftBallScene(const SceneSettings& settings)
+    : m_settings(settings), m_centreX(settings.origin[0]), m_centreZ(settings.origin[2]), m_bullet(new Bullet) {
   Bullet& b = *m_bullet;
   const SoftVariant variant = softVariantOf(settings.algorithm);
   const bool thinTool = settings.algorithm == Algorithm::ThinTool || settings.algorithm == Algorithm::ThinToolPaper;
@@ -340,8 +341,18 @@ btVector3 SoftBallScene::atOrigin(double x, double y, double z) const {
 }
 
 btVector3 SoftBallScene::aboveBall(double y) const {
-  const std::array<double, 3>& o = m_settings.origin;
-  return btVector3(btScalar(o[0]), btScalar(y), btScalar(o[2]));
+  return btVector3(btScalar(m_centreX), btScalar(y), btScalar(m_centreZ));
+}
+
+void SoftBallScene::centreOverBall() {
+  double x = 0, z = 0;
+  for (int i = 0; i < m_ball->m_nodes.size(); ++i) {
+    x += double(m_ball->m_nodes[i].m_x.x());
+    z += double(m_ball->m_nodes[i].m_x.z());
+  }
+  const double count = std::max(m_ball->m_nodes.size(), 1);
+  m_centreX = x / count;
+  m_centreZ = z / count;
 }
 
 double SoftBallScene::softMargin() const { return m_ball->getCollisionShape()->getMargin(); }

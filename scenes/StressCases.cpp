@@ -93,21 +93,38 @@ StressCase base(std::string group, std::string name, Expectation expectation) {
   return c;
 }
 
+// At 1/10,000 s the pressure ball walks on the ground as Bullet steps it (0.66 m while it settles,
+// in Bullet's float build), and the press, meant to come from above, met its side and squeezed it
+// out: the hold met no ball. So at that step the press comes down over the ball where it settled,
+// and the ball's nodes within 2 cm of its lowest are pinned, as tissue lying on its bed.
+void pinBallUnderThePress(SoftBallScene& scene) {
+  scene.centreOverBall();
+  btSoftBody& ball = scene.ball();
+  btScalar lowest = BT_LARGE_FLOAT;
+  for (int i = 0; i < ball.m_nodes.size(); ++i) lowest = btMin(lowest, ball.m_nodes[i].m_x.y());
+  for (int i = 0; i < ball.m_nodes.size(); ++i) {
+    if (ball.m_nodes[i].m_x.y() < lowest + btScalar(0.02)) ball.setMass(i, 0);
+  }
+}
+
 void addStiffnessCases(std::vector<StressCase>& cases) {
   // Slow enough for the paper's discrete detection at the largest step: 1.7 cm a step at 1/30 s.
   constexpr double kSpeed = 0.5;
-  const double steps[] = {1.0 / 30, 1.0 / 240, 1.0 / 1000, 1.0 / 10000};
+  constexpr double kSmallestStep = 1.0 / 10000;
+  const double steps[] = {1.0 / 30, 1.0 / 240, 1.0 / 1000, kSmallestStep};
   for (double dt : steps) {
     StressCase c = base("stiffness", "default response (projection), " + stepName(dt), Expectation::Contained);
     c.scene.timeStep = dt;
     c.speed = kSpeed;
+    if (dt == kSmallestStep) c.prepare = pinBallUnderThePress;
     cases.push_back(c);
   }
   for (double k : {1.0, 1e3, 1e5, 1e7}) {
-    for (double dt : {1.0 / 30, 1.0 / 1000, 1.0 / 10000}) {
+    for (double dt : {1.0 / 30, 1.0 / 1000, kSmallestStep}) {
       StressCase c = base("stiffness", format("paper's f = k·t, k %.0e N/m, ", k) + stepName(dt), Expectation::Finite);
       c.scene.algorithm = Algorithm::ThinToolPaper;
       c.scene.timeStep = dt;
+      if (dt == kSmallestStep) c.prepare = pinBallUnderThePress;
       c.scene.toolOptions.response.kind = ResponseKind::PaperForce;
       c.scene.toolOptions.response.stiffness = k;
       // The paper's response alone, as published: the last word would hold what it cannot.
@@ -120,11 +137,12 @@ void addStiffnessCases(std::vector<StressCase>& cases) {
     double k, n, lambda;
   };
   for (const Law law : {Law{1, 1, 0}, Law{1e7, 1, 100}, Law{1e7, 2, 100}, Law{1e4, 1.5, 100}}) {
-    for (double dt : {1.0 / 30, 1.0 / 10000}) {
+    for (double dt : {1.0 / 30, kSmallestStep}) {
       std::ostringstream name;
       name << "Hunt–Crossley k " << law.k << ", n " << law.n << ", λ " << law.lambda << ", " << stepName(dt);
       StressCase c = base("stiffness", name.str(), Expectation::Contained);
       c.scene.timeStep = dt;
+      if (dt == kSmallestStep) c.prepare = pinBallUnderThePress;
       c.scene.toolOptions.force.enabled = true;
       c.scene.toolOptions.force.huntCrossley = {law.k, law.lambda, law.n};
       c.speed = kSpeed;
@@ -250,7 +268,7 @@ void addMotionCases(std::vector<StressCase>& cases) {
   };
   cases.push_back(across);
   // The same jump undeclared is a sweep at 1,200 m/s, edge-on through the ball; like the next case
-  // it is beyond what swept detection contains yet (issue 3), and is shown, not held to it.
+  // it is beyond what swept detection contains, and is shown, not held to it.
   StressCase swipe = base("motion", "moved 20 m across the scene in one step, edge-on through the ball",
                           Expectation::Finite);
   swipe.startPose = [](SoftBallScene& scene) {
