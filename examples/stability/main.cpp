@@ -6,10 +6,12 @@
 // largest penetration and kinetic energy, and its cost per step, from the same run. tests/stability holds every case to
 // its expectation; this program only reports.
 //
-//   stability [--filter TEXT] [--frictionless]
-//     --filter TEXT   runs the cases whose group or name contains TEXT
-//     --frictionless  turns ThinTool's friction off in each case's tool (on by default, with
-//                     Bullet's coefficient: the ball's kDF times the tool's friction)
+//   stability [--filter TEXT] [--frictionless] [--no-energy-guard]
+//     --filter TEXT      runs the cases whose group or name contains TEXT
+//     --frictionless     turns ThinTool's friction off in each case's tool (on by default, with
+//                        Bullet's coefficient: the ball's kDF times the tool's friction)
+//     --no-energy-guard  turns the energy guard off in each case's tool (ToolOptions::energyGuard),
+//                        to show what it holds
 
 #include "StressCases.h"
 
@@ -22,13 +24,16 @@ using namespace thintool::scenes;
 int main(int argc, char** argv) {
   std::string filter;
   bool frictionless = false;
+  bool noEnergyGuard = false;
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--filter") == 0 && i + 1 < argc) {
       filter = argv[++i];
     } else if (std::strcmp(argv[i], "--frictionless") == 0) {
       frictionless = true;
+    } else if (std::strcmp(argv[i], "--no-energy-guard") == 0) {
+      noEnergyGuard = true;
     } else {
-      std::fprintf(stderr, "usage: stability [--filter TEXT] [--frictionless]\n");
+      std::fprintf(stderr, "usage: stability [--filter TEXT] [--frictionless] [--no-energy-guard]\n");
       return 2;
     }
   }
@@ -41,6 +46,7 @@ int main(int argc, char** argv) {
       continue;
     }
     if (frictionless) c.scene.toolOptions.response.friction.enabled = false;
+    if (noEnergyGuard) c.scene.toolOptions.energyGuard.enabled = false;
     const StressOutcome o = runStressCase(c);
     std::string why;
     const bool ok = meets(o, c.expectation, &why);
