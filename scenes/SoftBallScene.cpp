@@ -345,14 +345,9 @@ btVector3 SoftBallScene::aboveBall(double y) const {
 }
 
 void SoftBallScene::centreOverBall() {
-  double x = 0, z = 0;
-  for (int i = 0; i < m_ball->m_nodes.size(); ++i) {
-    x += double(m_ball->m_nodes[i].m_x.x());
-    z += double(m_ball->m_nodes[i].m_x.z());
-  }
-  const double count = std::max(m_ball->m_nodes.size(), 1);
-  m_centreX = x / count;
-  m_centreZ = z / count;
+  const Vec3 centre = meanNodePosition(*m_ball);
+  m_centreX = centre.x;
+  m_centreZ = centre.z;
 }
 
 double SoftBallScene::softMargin() const { return m_ball->getCollisionShape()->getMargin(); }
@@ -365,13 +360,7 @@ double SoftBallScene::ballTop() const {
   return top;
 }
 
-double SoftBallScene::ballMeanHeight() const {
-  double sum = 0;
-  for (int i = 0; i < m_ball->m_nodes.size(); ++i) {
-    sum += m_ball->m_nodes[i].m_x.y();
-  }
-  return sum / m_ball->m_nodes.size();
-}
+double SoftBallScene::ballMeanHeight() const { return meanHeight(*m_ball); }
 
 double SoftBallScene::pressStartHeight() const {
   constexpr double kStartClearance = 0.1;  // m between the tool's underside and the soft margin
@@ -379,11 +368,16 @@ double SoftBallScene::pressStartHeight() const {
 }
 
 
-double meanHeight(const btSoftBody& body) {
-  double sum = 0;
-  for (int i = 0; i < body.m_nodes.size(); ++i) sum += body.m_nodes[i].m_x.y();
-  return sum / body.m_nodes.size();
+Vec3 meanNodePosition(const btSoftBody& body) {
+  Vec3 sum;
+  for (int i = 0; i < body.m_nodes.size(); ++i) {
+    const btVector3& x = body.m_nodes[i].m_x;
+    sum += Vec3{double(x.x()), double(x.y()), double(x.z())};
+  }
+  return sum / double(body.m_nodes.size());
 }
+
+double meanHeight(const btSoftBody& body) { return meanNodePosition(body).y; }
 
 ToolBox boxAt(const btTransform& pose, const Vec3& halfExtents) {
   ToolBox box;

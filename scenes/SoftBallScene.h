@@ -119,8 +119,8 @@ class SoftBallScene {
   /// built, or where centreOverBall last found it.
   btVector3 aboveBall(double y) const;
   /// Moves aboveBall's line to the ball's nodes' mean as they lie now. A pressure ball on the
-  /// ground can drift while it settles (0.66 m in the 1/10,000 s stress cases, Bullet's float
-  /// build); a press meant to come from above would otherwise meet its side.
+  /// ground can drift while it settles (in the 1/10,000 s stress cases, Bullet's float build); a
+  /// press meant to come from above would otherwise meet its side.
   void centreOverBall();
 
  private:
@@ -169,6 +169,8 @@ btSoftBody* createExactHullEllipsoid(btSoftBodyWorldInfo& info, const btVector3&
 /// The ball's node positions and face indices, for the metrics.
 std::vector<Point> nodePositions(const btSoftBody& ball);
 std::vector<std::array<int, 3>> faceIndices(const btSoftBody& ball);
+/// A soft body's mean node position (m, world).
+Vec3 meanNodePosition(const btSoftBody& body);
 /// A soft body's mean node height (m): where a grasp lifted it to.
 double meanHeight(const btSoftBody& body);
 /// A box of the given half extents (m) at pose, for the metrics.
