@@ -1,7 +1,7 @@
 #!/bin/sh
 # Runs the tests under AddressSanitizer and UndefinedBehaviorSanitizer against Bullet's float64
-# build (clang), and each libFuzzer target for a short, fixed run (clang); then builds ThinTool against
-# Bullet's float build and runs the whole test suite (unit, integration, install and a brief
+# build, and each libFuzzer target for a short, fixed run (both with clang); then builds ThinTool
+# against Bullet's float build and runs the whole test suite (unit, integration, install and a brief
 # benchmark run). Both Bullet builds are covered, with warnings as errors: the core computes in
 # double either way, the glue converts. The generated scenes' verdicts (label "generated") are
 # asserted in the float build only: which of those chaotic scenes fail depends on Bullet's
