@@ -111,9 +111,13 @@ int main(int argc, char** argv) {
       const GripperRun run = runGripper(settings);
       char reported[32] = "-";
       if (thinTool) std::snprintf(reported, sizeof reported, "%.2f", run.reportedLoad);
-      std::printf("| %s | %s | %.3f / %.3f | %.1f | %.3f | %d | %.1f | %.1f | %.2f | %.2f | %s | %.2f |%s\n",
+      // A body flung apart has nodes a long way inside a finger: its depth in three digits.
+      char deepest[32];
+      const double deepestMillimetres = 1000 * run.deepest;
+      std::snprintf(deepest, sizeof deepest, deepestMillimetres < 1e6 ? "%.1f" : "%.3g", deepestMillimetres);
+      std::printf("| %s | %s | %.3f / %.3f | %.1f | %.3f | %d | %s | %.1f | %.2f | %.2f | %s | %.2f |%s\n",
                   graspedBodyName(body), thinTool ? "ThinTool" : "stock", run.rise, run.lift, 1000 * run.slip,
-                  run.afterRelease, run.crossed, 1000 * run.deepest, run.grip, run.liftLoad, run.bodyLoad, reported,
+                  run.afterRelease, run.crossed, deepest, run.grip, run.liftLoad, run.bodyLoad, reported,
                   run.wallMilliseconds, run.finite ? "" : " not finite");
     }
   }
