@@ -644,21 +644,34 @@ Index shiftGroup(const Pose& end, const Vec3& shift, const Vec3& direction, Sepa
   return moved;
 }
 
-// A movable node that judgeNode sends back goes out by its face, the clearance beyond it; a node on
-// no face, to where it was beside the piece at the start of the step, carried with it.
+// A movable node that judgeNode sends back goes out by its face, the clearance beyond it.
 NodeVerdict putNodeOutside(const ToolModel& piece, const PieceMotion& motion, const Pose* poses, Real clearance,
-                           Index v, SeparationPatch& patch) {
+                           Index v, SeparationPatch& patch, const std::vector<NearPiece>* nearPieces) {
   Vec3 local;
   const NodeVerdict verdict =
       judgeNode(piece, motion, poses, patch.startPositions[v], patch.positions[v], patch.enclosed[v] != 0, clearance,
                 local);
   if (!verdict.fix) return verdict;
   const Pose& end = motion.end();
-  // A node on no face that went through goes back where it was in the piece's frame at the start,
-  // outside it: in front of the face it entered by, a node of a box and a ball side by side went
-  // into the box, and pass after pass the two pieces sent it into each other (generated seed 1881
-  // with --bullet-kinds). The pieces of one tool share that motion: it was outside all of them.
-  if (patch.enclosed[v] != 0) {
+  const Plane& plane = piece.planes[verdict.plane];
+  const Vec3 inFront = end.apply(local + plane.normal * (clearance - plane.signedDistance(local)));
+  // A node goes back in front of the face it entered by, where the solve took it along that face:
+  // a node the solve pulls through the piece towards its neighbours then slides round the piece
+  // step by step. A node on no face that would land there in another piece near this one goes
+  // back where it was in the piece's frame at the start instead, outside every piece of the tool,
+  // which shares that motion: in front of the face it entered, a node of a box and a ball side by
+  // side went into the box, and pass after pass the two pieces sent it into each other (generated
+  // seed 1881 with --bullet-kinds). Sent back there whatever lay near, an interior node of a
+  // tetrahedral box ahead of a blade at 34 m/s was carried along 25 steps while the solve pulled
+  // it through towards its neighbours; its links stretched to 1.1 m, and when the blade turned away
+  // it leapt back at 1,066 m/s (seed 53119). Without the near pieces (keepNodesOutside) it goes
+  // back to its start.
+  bool inNearPiece = nearPieces == nullptr;
+  for (std::size_t k = 0; nearPieces != nullptr && k < nearPieces->size() && !inNearPiece; ++k) {
+    const NearPiece& other = (*nearPieces)[k];
+    inNearPiece = outsideDistance(other.model->planes, other.end.applyInverse(inFront)) < clearance;
+  }
+  if (patch.enclosed[v] != 0 && inNearPiece) {
     const Vec3 atStart = motion.start().applyInverse(patch.startPositions[v]);
     if (outsideDistance(piece.planes, atStart) >= clearance) {
       patch.positions[v] = end.apply(atStart);
@@ -667,8 +680,7 @@ NodeVerdict putNodeOutside(const ToolModel& piece, const PieceMotion& motion, co
       return verdict;
     }
   }
-  const Plane& plane = piece.planes[verdict.plane];
-  patch.positions[v] = end.apply(local + plane.normal * (clearance - plane.signedDistance(local)));
+  patch.positions[v] = inFront;
   patch.moved[v] = 1;
   patch.directions[v] = end.applyToDirection(plane.normal);
   return verdict;
@@ -1080,7 +1092,7 @@ SeparationCounts separateFromPiece(const ToolModel& piece, const PieceMotion& mo
     }
     for (Index v = 0; v < vertexCount; ++v) {
       if (!(patch.inverseMasses[v] > 0) || (round > 0 && patch.movedInRound[v] != round)) continue;
-      const NodeVerdict verdict = putNodeOutside(piece, motion, poses, clearance, v, patch);
+      const NodeVerdict verdict = putNodeOutside(piece, motion, poses, clearance, v, patch, &nearPieces);
       if (round == 0 && verdict.sparedByArc) ++counts.arcSpared;
       if (!verdict.fix) continue;
       patch.movedInRound[v] = round;
@@ -1156,7 +1168,7 @@ SeparationCounts keepNodesOutside(const ToolModel& piece, const PieceMotion& mot
   motion.samplePoses(poses);
   for (Index v = 0; v < patch.vertexCount(); ++v) {
     if (!(patch.inverseMasses[v] > 0)) continue;
-    if (putNodeOutside(piece, motion, poses, settings.clearance, v, patch).fix) ++counts.nodesMoved;
+    if (putNodeOutside(piece, motion, poses, settings.clearance, v, patch, nullptr).fix) ++counts.nodesMoved;
   }
   const auto nothingKnown = [](auto) { return false; };
   countWhatIsLeft(piece, motion.end(), patch, settings.clearance / 2, nothingKnown, nothingKnown, counts);

@@ -18,9 +18,9 @@
 ///   inside the piece leaves through the face its path entered by; a node whose path went in by one
 ///   face and out by a face turned away from it (carried through) goes back in front of the face it
 ///   entered by; a node on no face of its body (a tetrahedral body's interior node) cannot ride
-///   round a piece's rounded side: any way through counts, and it goes back where it was in the
-///   piece's frame at the start, outside every piece of its tool (in front of the face it entered
-///   by, it could land in the piece beside). On the arc a path can come back out by the face it
+///   round a piece's rounded side: any way through counts. It goes back in front of the face it
+///   entered by too, unless it would land there in another piece near this one: then where it was
+///   in the piece's frame at the start, outside every piece of its tool. On the arc a path can come back out by the face it
 ///   entered by; it was carried through when, inside, it came nearer to a face turned away from
 ///   that one (past a plate's mid-plane). Under a turn the node goes back only when both readings
 ///   of the path, straight in the piece's frame and straight in the world against the arc, take it

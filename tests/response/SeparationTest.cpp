@@ -3,6 +3,7 @@
 #include "response/Separation.h"
 
 #include "TestMeshes.h"
+#include "geometry/Ccd.h"
 
 #include <gtest/gtest.h>
 
@@ -65,8 +66,8 @@ TEST(Separation, ANodeEnclosedByTheSurfaceGoesBackFromAPathThroughARoundPiece) {
   // A ball of radius 1 (the hull of an icosphere of 320 faces), still. Both nodes pass under
   // its top, 0.1 deep, in by a face and out by one less than 60° from it: a node of the surface rode
   // round the top and stays; a node the surface encloses (a tetrahedral body's interior node)
-  // cannot ride against the piece, went through it, and goes back where it was beside the piece at
-  // the start (the piece still, where it began).
+  // cannot ride against the piece, went through it, and goes back in front of the face it entered
+  // by, the clearance beyond it.
   const ToolModel ball = buildToolModel(test::icosphere(1, {0, 0, 0}, 2), ToolModelSettings{});
   const Vec3 start{-0.8, 0.9, 0};
   const Vec3 end{0.8, 0.9, 0};
@@ -79,9 +80,30 @@ TEST(Separation, ANodeEnclosedByTheSurfaceGoesBackFromAPathThroughARoundPiece) {
   EXPECT_EQ(p.patch.moved[riding], 0);
   EXPECT_EQ(p.patch.positions[riding], end);
   EXPECT_EQ(p.patch.moved[enclosed], 1);
-  const Vec3& back = p.patch.positions[enclosed];
-  EXPECT_GT(outsideDistance(ball.planes, back), 0);
-  EXPECT_EQ(back, start);
+  const ClipResult path = clipSegmentConvex(ball.planes, 0, start, end);
+  ASSERT_TRUE(path.hit);
+  EXPECT_NEAR(ball.planes[path.enterPlane].signedDistance(p.patch.positions[enclosed]), kClearance, 1e-12);
+}
+
+TEST(Separation, AnEnclosedNodeThatWouldLandInANearPieceGoesBackWhereItBegan) {
+  // The same path through the ball, with a second piece of the tool where the node would land in
+  // front of the face it entered by (a box and a ball side by side): it goes back where it was
+  // beside the ball at the start, outside both.
+  const ToolModel ball = buildToolModel(test::icosphere(1, {0, 0, 0}, 2), ToolModelSettings{});
+  const Vec3 start{-0.8, 0.9, 0};
+  const Vec3 end{0.8, 0.9, 0};
+  const ClipResult path = clipSegmentConvex(ball.planes, 0, start, end);
+  ASSERT_TRUE(path.hit);
+  const Plane& entry = ball.planes[path.enterPlane];
+  const Vec3 inFront = end + entry.normal * (kClearance - entry.signedDistance(end));
+  const ToolModel box = buildToolModel(makeBoxMesh({0.05, 0.05, 0.05}), ToolModelSettings{});
+  const std::vector<NearPiece> near = {NearPiece{&box, at(inFront)}};
+  Patch p;
+  const Index enclosed = p.node(start, end);
+  p.patch.enclosed[enclosed] = 1;
+  separateFromPiece(ball, PieceMotion(Pose{}, Pose{}, 0.1), {}, p.patch, near);
+  EXPECT_EQ(p.patch.moved[enclosed], 1);
+  EXPECT_EQ(p.patch.positions[enclosed], start);
 }
 
 TEST(Separation, ATurnSweepsAlongItsArcNotItsChord) {
