@@ -644,6 +644,13 @@ Index shiftGroup(const Pose& end, const Vec3& shift, const Vec3& direction, Sepa
   return moved;
 }
 
+// Whether a point (world) lies within clearance of one of the near pieces.
+bool liesInNearPiece(const std::vector<NearPiece>& near, const Vec3& point, Real clearance) {
+  return std::any_of(near.begin(), near.end(), [&](const NearPiece& other) {
+    return outsideDistance(other.model->planes, other.end.applyInverse(point)) < clearance;
+  });
+}
+
 // A movable node that judgeNode sends back goes out by its face, the clearance beyond it.
 NodeVerdict putNodeOutside(const ToolModel& piece, const PieceMotion& motion, const Pose* poses, Real clearance,
                            Index v, SeparationPatch& patch, const std::vector<NearPiece>* nearPieces) {
@@ -666,12 +673,7 @@ NodeVerdict putNodeOutside(const ToolModel& piece, const PieceMotion& motion, co
   // it through towards its neighbours; its links stretched to 1.1 m, and when the blade turned away
   // it leapt back at 1,066 m/s (seed 53119). Without the near pieces (keepNodesOutside) it goes
   // back to its start.
-  bool inNearPiece = nearPieces == nullptr;
-  for (std::size_t k = 0; nearPieces != nullptr && k < nearPieces->size() && !inNearPiece; ++k) {
-    const NearPiece& other = (*nearPieces)[k];
-    inNearPiece = outsideDistance(other.model->planes, other.end.applyInverse(inFront)) < clearance;
-  }
-  if (patch.enclosed[v] != 0 && inNearPiece) {
+  if (patch.enclosed[v] != 0 && (nearPieces == nullptr || liesInNearPiece(*nearPieces, inFront, clearance))) {
     const Vec3 atStart = motion.start().applyInverse(patch.startPositions[v]);
     if (outsideDistance(piece.planes, atStart) >= clearance) {
       patch.positions[v] = end.apply(atStart);

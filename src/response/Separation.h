@@ -20,9 +20,9 @@
 ///   entered by; a node on no face of its body (a tetrahedral body's interior node) cannot ride
 ///   round a piece's rounded side: any way through counts. It goes back in front of the face it
 ///   entered by too, unless it would land there in another piece near this one: then where it was
-///   in the piece's frame at the start, outside every piece of its tool. On the arc a path can come back out by the face it
-///   entered by; it was carried through when, inside, it came nearer to a face turned away from
-///   that one (past a plate's mid-plane). Under a turn the node goes back only when both readings
+///   in the piece's frame at the start, outside every piece of its tool. On the arc a path can
+///   come back out by the face it entered by; it was carried through when, inside, it came nearer
+///   to a face turned away from that one (past a plate's mid-plane). Under a turn the node goes back only when both readings
 ///   of the path, straight in the piece's frame and straight in the world against the arc, take it
 ///   through (either alone is wrong for some node: the first for one the turning piece never
 ///   reached, the second for one that rode on its face). The nearest face would send a node that
