@@ -46,10 +46,11 @@
 /// - A face move that would take one of its nodes further from where the solver left it than both
 ///   the node's place at the start of the step, carried along with the piece, and the move's own
 ///   length (counted up to twice what the step explains: the piece's farthest path and the face's
-///   own move in the solve) puts the face there instead: as it was beside the piece then. Faces
-///   that share nodes otherwise add their rounds' moves up, half a metre in a step on a pinned
-///   sheet, and a face stretched across a turning needle leaves it within its own plane, as far as
-///   the needle is long.
+///   own move in the solve) puts that node there instead, where it was beside the piece then; the
+///   face's other nodes take their shares. Faces that share nodes otherwise add their rounds' moves
+///   up, half a metre in a step on a pinned sheet, and a face stretched across a turning needle
+///   leaves it within its own plane, as far as the needle is long. Sending the whole face back made
+///   the nodes beside a moving piece ride along with it.
 /// - A face with a pinned node cannot translate: its free nodes go beyond a face plane of the
 ///   piece that its pinned nodes are beyond. Moved by shares of a translation instead, they go no
 ///   further than twice what the step explains (the path of the piece's farthest-going corner and

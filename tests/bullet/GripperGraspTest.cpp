@@ -56,20 +56,21 @@ TEST(GripperGraspDeformable, TheFingersReportWhatBulletsContactsCarry) {
   EXPECT_NEAR(run.reportedLoad, run.bodyLoad, 0.1 * run.bodyLoad);
 }
 
-// Without Bullet's contacts on the fingers, ThinTool's last word alone holds the cube up in the
-// deformable world: the fingers take the momentum it gives the nodes, no more, so that the lift's
-// motor carries the cube's weight and the report says so (counting each move's speed as a closing
-// speed, the motor carried seven times the weight). What ThinTool applied to the fingers, their
-// reports' reaction, is then all they carried.
-TEST(GripperGraspDeformable, TheLastWordAloneLiftsTheCubeAndTheFingersCarryItsWeight) {
+// Without Bullet's contacts on the fingers, ThinTool's last word alone keeps the fingers out of the
+// cube in the deformable world, where stock Bullet's pass through it. The last word has no friction
+// there (no holds, no contacts of its own in Bullet's solve), so the squeezed cube is not lifted.
+// (It was while a face move that went too far for one node sent all of the face's nodes back to
+// their places beside the finger, which stuck them to it.) What ThinTool applied to the fingers,
+// their reports' reaction, is all they carried, and the lift's motor says the same.
+TEST(GripperGraspDeformable, TheLastWordAloneKeepsTheFingersOutOfTheCube) {
   GripperSettings settings;
   settings.world = WorldKind::Deformable;
   settings.bulletFingerContacts = false;
   const GripperRun run = runGripper(settings);
   ASSERT_TRUE(run.finite);
-  expectLiftedCleanly(run);
+  EXPECT_EQ(run.crossed, 0) << "no node passed through a finger";
+  EXPECT_LT(run.deepest, 1e-4) << "no node or face deeper than 0.1 mm in a finger after a step";
   EXPECT_NEAR(run.reportedLoad, run.liftLoad, 0.03 * run.bodyLoad);
-  EXPECT_NEAR(run.liftLoad, run.bodyLoad, 0.1 * run.bodyLoad);
   EXPECT_NEAR(run.appliedLoad, run.reportedLoad, 0.01 * run.bodyLoad);
 }
 

@@ -528,6 +528,31 @@ TEST(Separation, NoFaceMoveTakesANodePastItsPlaceCarriedWithThePiece) {
   }
 }
 
+TEST(Separation, AFaceMoveSendsBackOnlyTheNodeThatWouldGoTooFar) {
+  // The face above, of which an earlier round has pushed one node alone half a metre aside. That
+  // node goes back to its place at the start; the others take their shares of the move, which put
+  // them just above the plate, not back where they began: sent back with it, the nodes beside a
+  // moving piece rode along with it, step after step.
+  const ToolModel piece = plate();
+  Patch p;
+  const Vec3 start[3] = {{-0.05, 0.03, -0.05}, {0.05, 0.03, -0.05}, {0, 0.03, 0.05}};
+  Index v[3];
+  for (int k = 0; k < 3; ++k) v[k] = p.node(start[k], start[k] - Vec3{0, 0.03, 0});
+  p.patch.faces.push_back({v[0], v[1], v[2]});
+  p.patch.positions[v[0]] += Vec3{0.5, 0, 0};
+  const SeparationCounts counts = separateFromPiece(piece, PieceMotion(Pose{}, Pose{}, 0.1), {}, p.patch);
+  EXPECT_EQ(counts.facesPierced, 0u);
+  EXPECT_NEAR(length(p.patch.positions[v[0]] - start[0]), 0, 1e-12);
+  for (int k = 1; k < 3; ++k) {
+    const Vec3& at = p.patch.positions[v[k]];
+    EXPECT_GT(at.y, 0.01) << "node " << k << " is in the plate";
+    EXPECT_LT(at.y, 0.02) << "node " << k << " went back to its start";
+    EXPECT_EQ(p.patch.moved[v[k]], 1);
+  }
+  EXPECT_FALSE(triangleMeetsPiece(piece, p.patch.positions[v[0]], p.patch.positions[v[1]], p.patch.positions[v[2]],
+                                  0));
+}
+
 // A face hanging over the still plate's rim from two heavy nodes far beyond it, its light node
 // over the plate, which the solver took 7 mm down into the plate. Shares of the way back out would
 // take the light node three times the face's move, 16.5 mm, further than twice anything the step
