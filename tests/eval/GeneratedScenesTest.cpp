@@ -331,10 +331,11 @@ TEST(GeneratedScenes, TheEnergyGuardWatchesStepsInWhichOnlyTheHoldsAct) {
 }
 
 // A kinematic ball 477 mm across spinning 164° a step beside a pinned sheet, with Bullet's kinds
-// drawn: read along the chord of each node's arc, which cuts through the ball, detection flings
-// nodes the ball never touched and one crosses it (2592, open with the defaults); following the
-// arc (ToolOptions::sweptFollowsArc) it leaves them alone. So, too, under a plate turning 116° a
-// step through a cut sheet (3440, nodes at 3,860 m/s with the defaults).
+// drawn: read along the chord of each node's arc, which cuts through the ball, detection flung
+// nodes the ball never touched and one crossed it (2592); following the arc
+// (ToolOptions::sweptFollowsArc) it leaves them alone. So, too, under a plate turning 116° a step
+// through a cut sheet (3440, nodes at 3,860 m/s). Both pass with the defaults too since a face move
+// sends back only those of its nodes that would go too far (regressions-bullet-kinds.txt).
 TEST(GeneratedScenes, DetectionThatFollowsTheArcFlingsNothingBesideASpinningTool) {
   for (const std::uint64_t seed : {2592u, 3440u}) {
     SceneSpec scene = generateScene(seed, kScenes, withBulletKinds());
