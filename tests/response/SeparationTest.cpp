@@ -509,55 +509,58 @@ TEST(Separation, SettingsAreValidated) {
   EXPECT_FALSE(validateSeparationSettings(bad).empty());
 }
 
-TEST(Separation, NoFaceMoveTakesANodePastItsPlaceCarriedWithThePiece) {
-  // A face that fell from above the plate into it, which an earlier round (another face sharing
-  // its nodes) has already pushed half a metre aside. Put back above the plate from there, its
-  // nodes would end half a metre from where the solver left them; its place at the start is 3 cm
-  // away, and it goes there.
-  const ToolModel piece = plate();
-  Patch p;
+// A face that fell from 3 cm above the still plate into it, as the solver left it.
+struct FallenFace {
   const Vec3 start[3] = {{-0.05, 0.03, -0.05}, {0.05, 0.03, -0.05}, {0, 0.03, 0.05}};
+  Patch p;
   Index v[3];
-  for (int k = 0; k < 3; ++k) v[k] = p.node(start[k], start[k] - Vec3{0, 0.03, 0});
-  p.patch.faces.push_back({v[0], v[1], v[2]});
-  for (Index vertex : v) p.patch.positions[vertex] += Vec3{0.5, 0, 0};
-  separateFromPiece(piece, PieceMotion(Pose{}, Pose{}, 0.1), {}, p.patch);
+  FallenFace() {
+    for (int k = 0; k < 3; ++k) v[k] = p.node(start[k], start[k] - Vec3{0, 0.03, 0});
+    p.patch.faces.push_back({v[0], v[1], v[2]});
+  }
+};
+
+TEST(Separation, NoFaceMoveTakesANodePastItsPlaceCarriedWithThePiece) {
+  // The fallen face, which an earlier round (another face sharing its nodes) has already pushed
+  // half a metre aside. Put back above the plate from there, its nodes would end half a metre from
+  // where the solver left them; their places at the start are 3 cm away, and they go there.
+  const ToolModel piece = plate();
+  FallenFace face;
+  for (Index vertex : face.v) face.p.patch.positions[vertex] += Vec3{0.5, 0, 0};
+  separateFromPiece(piece, PieceMotion(Pose{}, Pose{}, 0.1), {}, face.p.patch);
   for (int k = 0; k < 3; ++k) {
-    EXPECT_NEAR(length(p.patch.positions[v[k]] - start[k]), 0, 1e-12) << "node " << k;
-    EXPECT_EQ(p.patch.moved[v[k]], 1);
+    EXPECT_NEAR(length(face.p.patch.positions[face.v[k]] - face.start[k]), 0, 1e-12) << "node " << k;
+    EXPECT_EQ(face.p.patch.moved[face.v[k]], 1);
   }
 }
 
 TEST(Separation, AFaceMoveSendsBackOnlyTheNodeThatWouldGoTooFar) {
-  // The face above, of which an earlier round has pushed one node alone half a metre aside. That
+  // The fallen face, of which an earlier round has pushed one node alone half a metre aside. That
   // node goes back to its place at the start; the others take their shares of the move, which put
   // them just above the plate, not back where they began: sent back with it, the nodes beside a
   // moving piece rode along with it, step after step.
   const ToolModel piece = plate();
-  Patch p;
-  const Vec3 start[3] = {{-0.05, 0.03, -0.05}, {0.05, 0.03, -0.05}, {0, 0.03, 0.05}};
-  Index v[3];
-  for (int k = 0; k < 3; ++k) v[k] = p.node(start[k], start[k] - Vec3{0, 0.03, 0});
-  p.patch.faces.push_back({v[0], v[1], v[2]});
-  p.patch.positions[v[0]] += Vec3{0.5, 0, 0};
-  const SeparationCounts counts = separateFromPiece(piece, PieceMotion(Pose{}, Pose{}, 0.1), {}, p.patch);
+  FallenFace face;
+  const SeparationPatch& patch = face.p.patch;
+  face.p.patch.positions[face.v[0]] += Vec3{0.5, 0, 0};
+  const SeparationCounts counts = separateFromPiece(piece, PieceMotion(Pose{}, Pose{}, 0.1), {}, face.p.patch);
   EXPECT_EQ(counts.facesPierced, 0u);
-  EXPECT_NEAR(length(p.patch.positions[v[0]] - start[0]), 0, 1e-12);
+  EXPECT_NEAR(length(patch.positions[face.v[0]] - face.start[0]), 0, 1e-12);
   for (int k = 1; k < 3; ++k) {
-    const Vec3& at = p.patch.positions[v[k]];
+    const Vec3& at = patch.positions[face.v[k]];
     EXPECT_GT(at.y, 0.01) << "node " << k << " is in the plate";
     EXPECT_LT(at.y, 0.02) << "node " << k << " went back to its start";
-    EXPECT_EQ(p.patch.moved[v[k]], 1);
+    EXPECT_EQ(patch.moved[face.v[k]], 1);
   }
-  EXPECT_FALSE(triangleMeetsPiece(piece, p.patch.positions[v[0]], p.patch.positions[v[1]], p.patch.positions[v[2]],
-                                  0));
+  EXPECT_FALSE(triangleMeetsPiece(piece, patch.positions[face.v[0]], patch.positions[face.v[1]],
+                                  patch.positions[face.v[2]], 0));
 }
 
 // A face hanging over the still plate's rim from two heavy nodes far beyond it, its light node
 // over the plate, which the solver took 7 mm down into the plate. Shares of the way back out would
 // take the light node three times the face's move, 16.5 mm, further than twice anything the step
-// did (the plate stood still, the node moved 7 mm); the face goes back to its place at the start
-// instead, beside the plate, and no node moves further than that.
+// did (the plate stood still, the node moved 7 mm); the light node goes back to its place at the
+// start instead, beside the plate, and no node moves further than that.
 TEST(Separation, NoFaceMoveTakesANodeFurtherThanTwiceWhatTheStepExplains) {
   const ToolModel piece = plate();
   Patch p;
