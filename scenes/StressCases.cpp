@@ -168,15 +168,17 @@ void addStiffnessCases(std::vector<StressCase>& cases) {
   }
 }
 
+// Pressed to the ball's middle, the tool leaves the ball ringing at 0.5 to 2.4 J for up to a second
+// and a half before it settles to a tenth of a joule (the 1 µm plate; the scene 1e4 m from the
+// origin in Bullet's float64 build): held one second, the energy test would set the ring's crests
+// against each other. The geometry cases hold two.
 void addGeometryCases(std::vector<StressCase>& cases) {
+  const std::size_t first = cases.size();
   StressCase zero = base("geometry", "plate of zero thickness", Expectation::Rejected);
   zero.scene.toolThickness = 0;
   cases.push_back(zero);
-  // Pressed to the ball's centre, the plate leaves it ringing at 0.5 to 2 J for over a second
-  // before it settles: a one-second hold would set the ring's crests against each other.
   StressCase thin = base("geometry", "plate 1 µm thick", Expectation::Contained);
   thin.scene.toolThickness = 1e-6;
-  thin.holdSeconds = 2;
   cases.push_back(thin);
 
   // Touching exactly: ThinTool's contact surface is the tool grown by the skin (the soft body's
@@ -259,6 +261,7 @@ void addGeometryCases(std::vector<StressCase>& cases) {
   StressCase far = base("geometry", "scene 1e4 m from the origin", Expectation::Contained);
   far.scene.origin = {1e4, 0, 1e4};
   cases.push_back(far);
+  for (std::size_t c = first; c < cases.size(); ++c) cases[c].holdSeconds = 2;
 }
 
 void addMotionCases(std::vector<StressCase>& cases) {
