@@ -22,14 +22,14 @@
 ///   entered by too, unless it would land there in another piece near this one: then where it was
 ///   in the piece's frame at the start, outside every piece of its tool. On the arc a path can
 ///   come back out by the face it entered by; it was carried through when, inside, it came nearer
-///   to a face turned away from that one (past a plate's mid-plane). Under a turn the node goes back only when both readings
-///   of the path, straight in the piece's frame and straight in the world against the arc, take it
-///   through (either alone is wrong for some node: the first for one the turning piece never
-///   reached, the second for one that rode on its face). The nearest face would send a node that
-///   crossed more than half the piece's thickness out of the far side. Where both readings are
-///   wrong together, a piece that ends inside a closed body it was outside of, the glue reads the
-///   motion along the chord alone (PieceMotion::alongChord) or carries the faces crossed on the arc
-///   (carryCrossedFaces).
+///   to a face turned away from that one (past a plate's mid-plane). Under a turn the node goes
+///   back only when both readings of the path, straight in the piece's frame and straight in the
+///   world against the arc, take it through (either alone is wrong for some node: the first for
+///   one the turning piece never reached, the second for one that rode on its face). The nearest
+///   face would send a node that crossed more than half the piece's thickness out of the far side.
+///   Where both readings are wrong together, a piece that ends inside a closed body it was outside
+///   of, the glue reads the motion along the chord alone (PieceMotion::alongChord) or carries the
+///   faces crossed on the arc (carryCrossedFaces).
 /// - A face must keep a side it had at the start of the step: some separating axis (the piece's
 ///   face normals, the triangle's normal at either end, the cross products of their edges)
 ///   separates it from the piece on the same side at both ends; under a turn, a face that ends
