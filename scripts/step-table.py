@@ -4,8 +4,10 @@
 Runs benchmarks/bullet/WholeStepBench.cpp's rows (WholeStep/Stock, WholeStep/ThinTool and
 WholeStep/ThinToolScan, BulletSettings::scanFaces, at each <faces>/<depth mm>) with repetitions in
 random order and keeps each row's fastest repetition (scripts/benchmark_rows.py), then prints one
-markdown row per size and depth, and for each step budget the largest of the balls whose mean step
-fits it. Needs a Release build in ./build (see README):
+markdown row per size and depth, for each step budget the largest of the balls whose mean step
+fits it, and a second table of the collision work in the same steps: the ball's pairs in Bullet's
+dispatcher for both (stock's handler; ThinTool's collision stage), with ThinTool's last word added
+to its pairs. Needs a Release build in ./build (see README):
 
     ./scripts/step-table.py [repetitions, 3 by default]
 """
@@ -14,9 +16,9 @@ import sys
 from benchmark_rows import fastest_rows, number
 
 repetitions = sys.argv[1] if len(sys.argv) > 1 else "3"
+figures = ("stepUs", "stageUs", "lastWordUs", "sharedPassUs", "pairsUs", "heldPairsUs", "heldLastWordUs")
 fastest = {(name, int(faces), int(depth)): row
-           for (_, name, faces, depth, *_), row in fastest_rows("WholeStep/", repetitions,
-                                                                ("stepUs", "stageUs", "lastWordUs", "sharedPassUs")).items()}
+           for (_, name, faces, depth, *_), row in fastest_rows("WholeStep/", repetitions, figures).items()}
 print("| faces, depth | stock E: step (µs) | ThinTool: step (µs) | ratio to stock "
       "| ThinTool's clocks: stage + last word (of which shared with Bullet) (µs) "
       "| ThinTool scanning: step (µs) | ratio to stock | its clocks (µs) |")
@@ -40,3 +42,17 @@ for budget in (1000, 1e6 / 60):
             fits[name] = f"{max(within):,} faces" if within else "none of these balls"
         print(f"- {budget / 1000:.1f} ms budget, {depth} mm deep: stock E {fits['Stock']}, "
               f"ThinTool {fits['ThinTool']}, scanning {fits['ThinToolScan']}")
+
+print()
+print("| faces, depth | stock: the ball's pairs (µs) | ThinTool: its pairs + last word (µs) | ratio to stock "
+      "| second half of the hold: stock (µs) | ThinTool (µs) | ratio to stock |")
+print("|---|---|---|---|---|---|---|")
+for faces, depth in sizes:
+    stock = fastest[("Stock", faces, depth)]
+    tool = fastest[("ThinTool", faces, depth)]
+    whole = tool["pairsUs"] + tool["lastWordUs"]
+    held = tool["heldPairsUs"] + tool["heldLastWordUs"]
+    print(f"| {faces:,}, {depth} mm | {number(stock['pairsUs'])} "
+          f"| {number(tool['pairsUs'])} + {number(tool['lastWordUs'])} | {whole / stock['pairsUs']:.2f} "
+          f"| {number(stock['heldPairsUs'])} | {number(tool['heldPairsUs'])} + {number(tool['heldLastWordUs'])} "
+          f"| {held / stock['heldPairsUs']:.2f} |")
