@@ -400,47 +400,74 @@ bool swingAboutPinnedNodes(SeparationPatch& patch, const std::array<Index, 3>& f
   return true;
 }
 
-// The translations t·direction, for t in (enter, leave), that leave the triangle (piece frame)
-// meeting the piece grown by `grow`; none when enter >= leave. Exact: the separating axes of a
-// triangle that only translates stay the same.
+// The translations t·direction, for t in (enter, leave), that leave a triangle meeting the piece
+// grown by some length; none when enter >= leave.
 struct TranslationInterval {
   Real enter = -std::numeric_limits<Real>::max();
   Real leave = std::numeric_limits<Real>::max();
 };
 
-TranslationInterval meetingInterval(const ToolModel& piece, const Vec3 (&triangle)[3], const Vec3& direction,
-                                    Real grow) {
-  TranslationInterval meeting;
+// The piece's face normals as unit separating axes, with the piece's extent along each: the part of
+// every triangle's axes that is the same for all of them.
+void pieceAxisExtents(const ToolModel& piece, std::vector<AxisExtents>& out) {
+  out.clear();
   const std::vector<Vec3>& corners = piece.mesh.vertices;
-  // Narrows the interval by one axis; true once it is empty, which no other axis can change.
-  const auto narrow = [&](const Vec3& rawAxis) {
+  for (const Plane& plane : piece.planes) {
+    const Real axisLength = length(plane.normal);
+    if (!(axisLength > Real(1e-12))) continue;
+    AxisExtents extents;
+    extents.axis = plane.normal / axisLength;
+    projectedInterval(extents.axis, corners.data(), corners.size(), extents.pieceLow, extents.pieceHigh);
+    out.push_back(extents);
+  }
+}
+
+// Appends the separating axes of a triangle (piece frame) against the piece, unit, with the
+// extents of both along each and the piece's grown by `grow`: the piece's face normals
+// (pieceAxes), the triangle's normal, the cross products of their edges. A translation changes
+// neither the axes nor the extents, only where the triangle's lie, so these serve every direction
+// the group is tried along.
+void appendAxisExtents(const ToolModel& piece, const std::vector<AxisExtents>& pieceAxes,
+                       const Vec3 (&triangle)[3], Real grow, std::vector<AxisExtents>& out) {
+  for (AxisExtents extents : pieceAxes) {
+    extents.pieceLow -= grow;
+    extents.pieceHigh += grow;
+    projectedInterval(extents.axis, triangle, 3, extents.low, extents.high);
+    out.push_back(extents);
+  }
+  const std::vector<Vec3>& corners = piece.mesh.vertices;
+  visitTriangleAxes(piece, triangle, [&](const Vec3& rawAxis) {
     const Real axisLength = length(rawAxis);
     if (!(axisLength > Real(1e-12))) return false;
-    const Vec3 axis = rawAxis / axisLength;
-    Real pieceLow = 0;
-    Real pieceHigh = 0;
-    projectedInterval(axis, corners.data(), corners.size(), pieceLow, pieceHigh);
-    pieceLow -= grow;
-    pieceHigh += grow;
-    Real low = 0;
-    Real high = 0;
-    projectedInterval(axis, triangle, 3, low, high);
-    const Real speed = dot(axis, direction);
+    AxisExtents extents;
+    extents.axis = rawAxis / axisLength;
+    projectedInterval(extents.axis, corners.data(), corners.size(), extents.pieceLow, extents.pieceHigh);
+    extents.pieceLow -= grow;
+    extents.pieceHigh += grow;
+    projectedInterval(extents.axis, triangle, 3, extents.low, extents.high);
+    out.push_back(extents);
+    return false;
+  });
+}
+
+// The meeting interval of a triangle that translates along direction, from its axes
+// (appendAxisExtents). Exact: the separating axes of a triangle that only translates stay the same.
+TranslationInterval meetingInterval(const AxisExtents* axes, const AxisExtents* axesEnd, const Vec3& direction) {
+  TranslationInterval meeting;
+  for (const AxisExtents* extents = axes; extents != axesEnd; ++extents) {
+    const Real speed = dot(extents->axis, direction);
     if (std::abs(speed) < Real(1e-12)) {
-      if (low >= pieceHigh || high <= pieceLow) meeting = {0, 0};
+      if (extents->low >= extents->pieceHigh || extents->high <= extents->pieceLow) return {0, 0};
     } else {
-      Real first = (pieceLow - high) / speed;
-      Real second = (pieceHigh - low) / speed;
+      Real first = (extents->pieceLow - extents->high) / speed;
+      Real second = (extents->pieceHigh - extents->low) / speed;
       if (speed < 0) std::swap(first, second);
       meeting.enter = std::max(meeting.enter, first);
       meeting.leave = std::min(meeting.leave, second);
     }
-    return meeting.enter >= meeting.leave;
-  };
-  for (const Plane& plane : piece.planes) {
-    if (narrow(plane.normal)) return meeting;
+    // Empty: no other axis can change that.
+    if (meeting.enter >= meeting.leave) return meeting;
   }
-  visitTriangleAxes(piece, triangle, narrow);
   return meeting;
 }
 
@@ -456,30 +483,42 @@ void shiftedFace(const SeparationPatch& patch, const Pose& end, const std::array
   }
 }
 
-// The smallest t ≥ least that moves the group (patch.inCluster) by t·direction (piece frame) clear of
-// the piece, grown by the clearance: outside the meeting interval of every face all of whose nodes
-// are in the group, and of every node of it.
-Real shortestClearingShift(const ToolModel& piece, const Pose& end, const SeparationPatch& patch,
-                           const Vec3& direction, Real clearance, Real least) {
+// The axes (appendAxisExtents) of every face all of whose nodes are in the group
+// (patch.inCluster), then of every node of it, each one's run ending at patch.groupAxesEnd.
+void gatherGroupAxes(const ToolModel& piece, const Pose& end, Real clearance, SeparationPatch& patch) {
+  patch.groupAxes.clear();
+  patch.groupAxesEnd.clear();
+  for (const std::array<Index, 3>& face : patch.faces) {
+    if (patch.inCluster[face[0]] == 0 || patch.inCluster[face[1]] == 0 || patch.inCluster[face[2]] == 0) continue;
+    Vec3 triangle[3];
+    shiftedFace(patch, end, face, {}, triangle);
+    appendAxisExtents(piece, patch.pieceAxes, triangle, clearance, patch.groupAxes);
+    patch.groupAxesEnd.push_back(patch.groupAxes.size());
+  }
+  for (Index v = 0; v < patch.vertexCount(); ++v) {
+    if (patch.inCluster[v] == 0) continue;
+    const Vec3 point = end.applyInverse(patch.positions[v]);
+    const Vec3 node[3] = {point, point, point};
+    appendAxisExtents(piece, patch.pieceAxes, node, clearance, patch.groupAxes);
+    patch.groupAxesEnd.push_back(patch.groupAxes.size());
+  }
+}
+
+// The smallest t ≥ least that moves the group by t·direction (piece frame) clear of the piece,
+// grown by the clearance: outside the meeting interval of every face all of whose nodes are in
+// the group, and of every node of it (their axes gathered by gatherGroupAxes).
+Real shortestClearingShift(const SeparationPatch& patch, const Vec3& direction, Real least) {
   Real shift = least;
-  const auto pass = [&](const TranslationInterval& meeting) {
-    if (!(meeting.enter < shift && shift < meeting.leave)) return false;
-    shift = meeting.leave;
-    return true;
-  };
+  const AxisExtents* axes = patch.groupAxes.data();
   for (bool raised = true; raised;) {
     raised = false;
-    for (const std::array<Index, 3>& face : patch.faces) {
-      if (patch.inCluster[face[0]] == 0 || patch.inCluster[face[1]] == 0 || patch.inCluster[face[2]] == 0) continue;
-      Vec3 triangle[3];
-      shiftedFace(patch, end, face, {}, triangle);
-      raised = pass(meetingInterval(piece, triangle, direction, clearance)) || raised;
-    }
-    for (Index v = 0; v < patch.vertexCount(); ++v) {
-      if (patch.inCluster[v] == 0) continue;
-      const Vec3 point = end.applyInverse(patch.positions[v]);
-      const Vec3 node[3] = {point, point, point};
-      raised = pass(meetingInterval(piece, node, direction, clearance)) || raised;
+    std::size_t begin = 0;
+    for (const std::size_t axesEnd : patch.groupAxesEnd) {
+      const TranslationInterval meeting = meetingInterval(axes + begin, axes + axesEnd, direction);
+      begin = axesEnd;
+      if (!(meeting.enter < shift && shift < meeting.leave)) continue;
+      shift = meeting.leave;
+      raised = true;
     }
   }
   return shift;
@@ -707,6 +746,7 @@ void moveStuckFacesTogether(const ToolModel& piece, const PieceMotion& motion, c
   const Pose& end = motion.end();
   const Index vertexCount = patch.vertexCount();
   patch.inCluster.assign(vertexCount, 0);
+  pieceAxisExtents(piece, patch.pieceAxes);
   Vec3 back;
   for (const std::array<Index, 3>& face : patch.faces) {
     Vec3 now[3];
@@ -718,6 +758,7 @@ void moveStuckFacesTogether(const ToolModel& piece, const PieceMotion& motion, c
   back = normalizedOrZero(back);
 
   for (int growth = 0; growth < kMostGrowths; ++growth) {
+    gatherGroupAxes(piece, end, clearance, patch);
     Real bestShift = std::numeric_limits<Real>::max();
     Vec3 bestDirection;
     int bestHeld = std::numeric_limits<int>::max();
@@ -726,7 +767,7 @@ void moveStuckFacesTogether(const ToolModel& piece, const PieceMotion& motion, c
       const Vec3 direction = alongNormal ? piece.planes[candidate].normal : back;
       if (direction == Vec3{}) continue;
       const Real least = alongNormal ? swingShift(piece.planes[candidate], end, patch, clearance) : 0;
-      const Real shift = shortestClearingShift(piece, end, patch, direction, clearance, least);
+      const Real shift = shortestClearingShift(patch, direction, least);
       const int held = heldFaces(piece, end, patch, direction * shift);
       if (held > bestHeld || (held == bestHeld && !(shift < bestShift))) continue;
       if (groupGoesThrough(piece, motion, poses, patch, direction * shift, clearance)) continue;

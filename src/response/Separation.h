@@ -79,6 +79,16 @@
 
 namespace thintool {
 
+/// A unit separating axis (piece frame) with the extents along it of the piece, grown by a length,
+/// and of a triangle.
+struct AxisExtents {
+  Vec3 axis;
+  Real pieceLow = 0;
+  Real pieceHigh = 0;
+  Real low = 0;
+  Real high = 0;
+};
+
 /// The soft features near one tool piece, in the world frame, gathered by the glue.
 struct SeparationPatch {
   std::vector<Vec3> positions;       ///< where each node is: the solver's place, corrected in place
@@ -101,6 +111,11 @@ struct SeparationPatch {
   /// Scratch of the stage: the vertices moved together when the rounds leave faces pierced.
   std::vector<unsigned char> inCluster;
   std::vector<Vec3> carried;  ///< scratch: where the last resort would carry each node of the group
+  /// Scratch of the translation that moves stuck faces together: the piece's own separating axes,
+  /// and those of each face and node of the group, each run ending at its groupAxesEnd entry.
+  std::vector<AxisExtents> pieceAxes;
+  std::vector<AxisExtents> groupAxes;
+  std::vector<std::size_t> groupAxesEnd;
 
   Index vertexCount() const { return static_cast<Index>(positions.size()); }
   /// The per-vertex arrays agree and every face's vertices are in range: what addVertex and the
