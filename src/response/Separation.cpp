@@ -146,8 +146,8 @@ class TriangleAxes {
  public:
   TriangleAxes(const ToolModel& piece, const Vec3* end, const Vec3* start, Real tolerance, const Vec3& back = {})
       : m_piece(piece), m_end(end), m_start(start), m_tolerance(tolerance), m_back(back) {
-    for (const Plane& plane : m_piece.planes) {
-      if (visit(plane.normal)) return;
+    for (const AxisExtent& planeAxis : m_piece.planeAxes) {
+      if (planeAxis.axis != Vec3{} && visitUnit(planeAxis.axis, planeAxis.low, planeAxis.high)) return;
     }
     const auto visitAxis = [this](const Vec3& axis) { return visit(axis); };
     if (visitTriangleAxes(m_piece, end, visitAxis)) return;
@@ -193,6 +193,11 @@ class TriangleAxes {
     Real pieceLow = 0;
     Real pieceHigh = 0;
     projectedInterval(axis, corners.data(), corners.size(), pieceLow, pieceHigh);
+    return visitUnit(axis, pieceLow, pieceHigh);
+  }
+
+  // visit with the axis unit and the piece's extent along it known.
+  bool visitUnit(const Vec3& axis, Real pieceLow, Real pieceHigh) {
     Real low = 0;
     Real high = 0;
     projectedInterval(axis, m_end, 3, low, high);
@@ -407,31 +412,19 @@ struct TranslationInterval {
   Real leave = std::numeric_limits<Real>::max();
 };
 
-// The piece's face normals as unit separating axes, with the piece's extent along each: the part of
-// every triangle's axes that is the same for all of them.
-void pieceAxisExtents(const ToolModel& piece, std::vector<AxisExtents>& out) {
-  out.clear();
-  const std::vector<Vec3>& corners = piece.mesh.vertices;
-  for (const Plane& plane : piece.planes) {
-    const Real axisLength = length(plane.normal);
-    if (!(axisLength > Real(1e-12))) continue;
-    AxisExtents extents;
-    extents.axis = plane.normal / axisLength;
-    projectedInterval(extents.axis, corners.data(), corners.size(), extents.pieceLow, extents.pieceHigh);
-    out.push_back(extents);
-  }
-}
-
 // Appends the separating axes of a triangle (piece frame) against the piece, unit, with the
-// extents of both along each and the piece's grown by `grow`: the piece's face normals
-// (pieceAxes), the triangle's normal, the cross products of their edges. A translation changes
-// neither the axes nor the extents, only where the triangle's lie, so these serve every direction
-// the group is tried along.
-void appendAxisExtents(const ToolModel& piece, const std::vector<AxisExtents>& pieceAxes,
-                       const Vec3 (&triangle)[3], Real grow, std::vector<AxisExtents>& out) {
-  for (AxisExtents extents : pieceAxes) {
-    extents.pieceLow -= grow;
-    extents.pieceHigh += grow;
+// extents of both along each and the piece's grown by `grow`: the piece's face normals, the
+// triangle's normal, the cross products of their edges. A translation changes neither the axes
+// nor the extents, only where the triangle's lie, so these serve every direction the group is
+// tried along.
+void appendAxisExtents(const ToolModel& piece, const Vec3 (&triangle)[3], Real grow,
+                       std::vector<AxisExtents>& out) {
+  for (const AxisExtent& planeAxis : piece.planeAxes) {
+    if (planeAxis.axis == Vec3{}) continue;
+    AxisExtents extents;
+    extents.axis = planeAxis.axis;
+    extents.pieceLow = planeAxis.low - grow;
+    extents.pieceHigh = planeAxis.high + grow;
     projectedInterval(extents.axis, triangle, 3, extents.low, extents.high);
     out.push_back(extents);
   }
@@ -492,14 +485,14 @@ void gatherGroupAxes(const ToolModel& piece, const Pose& end, Real clearance, Se
     if (patch.inCluster[face[0]] == 0 || patch.inCluster[face[1]] == 0 || patch.inCluster[face[2]] == 0) continue;
     Vec3 triangle[3];
     shiftedFace(patch, end, face, {}, triangle);
-    appendAxisExtents(piece, patch.pieceAxes, triangle, clearance, patch.groupAxes);
+    appendAxisExtents(piece, triangle, clearance, patch.groupAxes);
     patch.groupAxesEnd.push_back(patch.groupAxes.size());
   }
   for (Index v = 0; v < patch.vertexCount(); ++v) {
     if (patch.inCluster[v] == 0) continue;
     const Vec3 point = end.applyInverse(patch.positions[v]);
     const Vec3 node[3] = {point, point, point};
-    appendAxisExtents(piece, patch.pieceAxes, node, clearance, patch.groupAxes);
+    appendAxisExtents(piece, node, clearance, patch.groupAxes);
     patch.groupAxesEnd.push_back(patch.groupAxes.size());
   }
 }
@@ -746,7 +739,6 @@ void moveStuckFacesTogether(const ToolModel& piece, const PieceMotion& motion, c
   const Pose& end = motion.end();
   const Index vertexCount = patch.vertexCount();
   patch.inCluster.assign(vertexCount, 0);
-  pieceAxisExtents(piece, patch.pieceAxes);
   Vec3 back;
   for (const std::array<Index, 3>& face : patch.faces) {
     Vec3 now[3];

@@ -111,9 +111,8 @@ struct SeparationPatch {
   /// Scratch of the stage: the vertices moved together when the rounds leave faces pierced.
   std::vector<unsigned char> inCluster;
   std::vector<Vec3> carried;  ///< scratch: where the last resort would carry each node of the group
-  /// Scratch of the translation that moves stuck faces together: the piece's own separating axes,
-  /// and those of each face and node of the group, each run ending at its groupAxesEnd entry.
-  std::vector<AxisExtents> pieceAxes;
+  /// Scratch of the translation that moves stuck faces together: the separating axes of each face
+  /// and node of the group, each run ending at its groupAxesEnd entry.
   std::vector<AxisExtents> groupAxes;
   std::vector<std::size_t> groupAxesEnd;
 

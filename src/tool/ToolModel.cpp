@@ -383,6 +383,21 @@ ToolModel buildToolModel(const ConvexMesh& mesh, const ToolModelSettings& settin
   ToolModel model;
   model.mesh = mesh;
   model.planes = facePlanes(mesh);
+  for (const Plane& plane : model.planes) {
+    AxisExtent extent;
+    const Real normalLength = length(plane.normal);
+    if (normalLength > Real(1e-12)) {
+      extent.axis = plane.normal / normalLength;
+      extent.low = std::numeric_limits<Real>::max();
+      extent.high = -extent.low;
+      for (const Vec3& corner : mesh.vertices) {
+        const Real p = dot(extent.axis, corner);
+        extent.low = std::min(extent.low, p);
+        extent.high = std::max(extent.high, p);
+      }
+    }
+    model.planeAxes.push_back(extent);
+  }
   model.bounds = bounds(mesh);
   model.thickness = thicknessAcrossFaces(mesh, model.planes);
   findFeatureEdges(mesh, model.planes, model);

@@ -38,10 +38,21 @@
 
 namespace thintool {
 
+/// A unit axis with the extent of the piece's hull along it.
+struct AxisExtent {
+  Vec3 axis;
+  Real low = 0;
+  Real high = 0;
+};
+
 /// Sample nodes of one convex piece, in the piece's frame. Immutable once built.
 struct ToolModel {
   ConvexMesh mesh;
   std::vector<Plane> planes;
+  /// Each plane's normal, made unit, with the hull's extent along it (a zero axis where the normal
+  /// is too short to make unit): the piece's own axes in every separating-axis test against a
+  /// soft triangle, the same for all of them.
+  std::vector<AxisExtent> planeAxes;
   Aabb bounds;
   Real thickness = 0;  ///< smallest width across the face normals (m)
   Real spacing = 0;    ///< the sampling spacing used (m)
