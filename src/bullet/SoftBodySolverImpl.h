@@ -47,9 +47,11 @@ class SoftBodySolverImpl {
   /// impulses ThinTool applies to a dynamic tool are summed from here on (ToolStepReport::reaction).
   void beginToolSteps(btScalar timeStep);
 
+  // Before Bullet's predictMotion: the fastest free node of each body (the deformable solver's), or
+  // of each active pressure body only (the classic solver's energy guard).
+  void rememberSpeeds(bool pressureBodiesOnly = false);
   // The deformable solver's (DeformableBodySolver): before Bullet's applyTransforms, where each
   // node begins the step; after it, the last word, with neither holds in a solve nor energy guard.
-  void rememberSpeeds();  // before Bullet's predictMotion: the fastest node of each body
   void rememberStarts();
   void lastWordAfterTransforms();
   /// Before Bullet's solve: the node contacts of the tools that give their own in the deformable
