@@ -108,14 +108,14 @@ void projectedInterval(const Vec3& axis, const Vec3* points, std::size_t count, 
 
 // Calls visit(axis) with the triangle's own candidate separating axes against the piece, unnormalised:
 // its normal and the cross products of its edges with the piece's; stops when visit returns true,
-// and says whether it did. The piece's face normals are the caller's to add.
+// and says whether it did. The piece's face normals are the caller's to add. An axis that repeats
+// one already visited, or its opposite, could change nothing the visits find: each piece edge
+// direction is taken once.
 template <typename Visit>
 bool visitTriangleAxes(const ToolModel& piece, const Vec3* triangle, Visit&& visit) {
   const Vec3 edges[3] = {triangle[1] - triangle[0], triangle[2] - triangle[1], triangle[0] - triangle[2]};
   if (visit(cross(edges[0], triangle[2] - triangle[0]))) return true;
-  const std::vector<Vec3>& corners = piece.mesh.vertices;
-  for (const auto& edge : piece.featureEdges) {
-    const Vec3 direction = corners[edge[1]] - corners[edge[0]];
+  for (const Vec3& direction : piece.featureEdgeDirections) {
     for (const Vec3& e : edges) {
       if (visit(cross(direction, e))) return true;
     }

@@ -403,6 +403,11 @@ ToolModel buildToolModel(const ConvexMesh& mesh, const ToolModelSettings& settin
   findFeatureEdges(mesh, model.planes, model);
   for (const auto& edge : model.featureEdges) {
     model.featureEdgeBoxes.push_back(Aabb::fromPoints(mesh.vertices[edge[0]], mesh.vertices[edge[1]]));
+    const Vec3 direction = mesh.vertices[edge[1]] - mesh.vertices[edge[0]];
+    const auto same = [&](const Vec3& known) { return known == direction || known == -direction; };
+    if (std::none_of(model.featureEdgeDirections.begin(), model.featureEdgeDirections.end(), same)) {
+      model.featureEdgeDirections.push_back(direction);
+    }
   }
 
   const Vec3 extent = model.bounds.extent();

@@ -82,6 +82,9 @@ struct ToolModel {
   std::vector<std::array<Index, 2>> featureEdges;
   std::vector<Aabb> featureEdgeBoxes;  ///< one per feature edge
   std::vector<std::array<Vec3, 2>> featureEdgeNormals;  ///< one per feature edge: its two faces' outward normals
+  /// The feature edges' directions (corner to corner), each once, up to sign: a box's twelve edges
+  /// have three. Separating axes built on two equal directions are the same axis.
+  std::vector<Vec3> featureEdgeDirections;
 
   Index mutualPairs = 0;    ///< nodes whose partner chose them back
   Index unpairedNodes = 0;  ///< nodes whose association ray found nothing within its length
