@@ -10,7 +10,9 @@
 
 #include <thintool/core/Math.h>
 
+#include <algorithm>
 #include <array>
+#include <cstddef>
 #include <string>
 #include <limits>
 #include <vector>
@@ -54,6 +56,17 @@ inline Real outsideDistance(const std::vector<Plane>& planes, const Vec3& p, Ind
 }
 
 Aabb bounds(const ConvexMesh& mesh);
+
+/// The extent of points along an axis: the least and greatest dot(axis, point).
+inline void projectedInterval(const Vec3& axis, const Vec3* points, std::size_t count, Real& low, Real& high) {
+  low = std::numeric_limits<Real>::max();
+  high = -low;
+  for (std::size_t k = 0; k < count; ++k) {
+    const Real p = dot(axis, points[k]);
+    low = std::min(low, p);
+    high = std::max(high, p);
+  }
+}
 
 /// Smallest width of the piece measured across its face normals: exact for boxes and plates, an
 /// upper bound of the true minimum width otherwise. ThinTool calls it the tool's thickness.

@@ -95,17 +95,6 @@ NodeVerdict judgeNode(const ToolModel& piece, const PieceMotion& motion, const P
   return {false, kInvalidIndex, behindEntry};
 }
 
-// The extent of points along an axis.
-void projectedInterval(const Vec3& axis, const Vec3* points, std::size_t count, Real& low, Real& high) {
-  low = std::numeric_limits<Real>::max();
-  high = -low;
-  for (std::size_t k = 0; k < count; ++k) {
-    const Real p = dot(axis, points[k]);
-    low = std::min(low, p);
-    high = std::max(high, p);
-  }
-}
-
 // Calls visit(axis) with the triangle's own candidate separating axes against the piece, unnormalised:
 // its normal and the cross products of its edges with the piece's; stops when visit returns true,
 // and says whether it did. The piece's face normals are the caller's to add. An axis that repeats
@@ -417,11 +406,11 @@ struct TranslationInterval {
 // triangle's normal, the cross products of their edges. A translation changes neither the axes
 // nor the extents, only where the triangle's lie, so these serve every direction the group is
 // tried along.
-void appendAxisExtents(const ToolModel& piece, const Vec3 (&triangle)[3], Real grow,
-                       std::vector<AxisExtents>& out) {
+void appendSeparatingAxes(const ToolModel& piece, const Vec3 (&triangle)[3], Real grow,
+                       std::vector<SeparatingAxis>& out) {
   for (const AxisExtent& planeAxis : piece.planeAxes) {
     if (planeAxis.axis == Vec3{}) continue;
-    AxisExtents extents;
+    SeparatingAxis extents;
     extents.axis = planeAxis.axis;
     extents.pieceLow = planeAxis.low - grow;
     extents.pieceHigh = planeAxis.high + grow;
@@ -432,7 +421,7 @@ void appendAxisExtents(const ToolModel& piece, const Vec3 (&triangle)[3], Real g
   visitTriangleAxes(piece, triangle, [&](const Vec3& rawAxis) {
     const Real axisLength = length(rawAxis);
     if (!(axisLength > Real(1e-12))) return false;
-    AxisExtents extents;
+    SeparatingAxis extents;
     extents.axis = rawAxis / axisLength;
     projectedInterval(extents.axis, corners.data(), corners.size(), extents.pieceLow, extents.pieceHigh);
     extents.pieceLow -= grow;
@@ -444,10 +433,11 @@ void appendAxisExtents(const ToolModel& piece, const Vec3 (&triangle)[3], Real g
 }
 
 // The meeting interval of a triangle that translates along direction, from its axes
-// (appendAxisExtents). Exact: the separating axes of a triangle that only translates stay the same.
-TranslationInterval meetingInterval(const AxisExtents* axes, const AxisExtents* axesEnd, const Vec3& direction) {
+// (appendSeparatingAxes). Exact: the separating axes of a triangle that only translates stay the same.
+TranslationInterval meetingInterval(const SeparatingAxis* axes, const SeparatingAxis* axesEnd,
+                                    const Vec3& direction) {
   TranslationInterval meeting;
-  for (const AxisExtents* extents = axes; extents != axesEnd; ++extents) {
+  for (const SeparatingAxis* extents = axes; extents != axesEnd; ++extents) {
     const Real speed = dot(extents->axis, direction);
     if (std::abs(speed) < Real(1e-12)) {
       if (extents->low >= extents->pieceHigh || extents->high <= extents->pieceLow) return {0, 0};
@@ -476,7 +466,7 @@ void shiftedFace(const SeparationPatch& patch, const Pose& end, const std::array
   }
 }
 
-// The axes (appendAxisExtents) of every face all of whose nodes are in the group
+// The axes (appendSeparatingAxes) of every face all of whose nodes are in the group
 // (patch.inCluster), then of every node of it, each one's run ending at patch.groupAxesEnd.
 void gatherGroupAxes(const ToolModel& piece, const Pose& end, Real clearance, SeparationPatch& patch) {
   patch.groupAxes.clear();
@@ -485,14 +475,14 @@ void gatherGroupAxes(const ToolModel& piece, const Pose& end, Real clearance, Se
     if (patch.inCluster[face[0]] == 0 || patch.inCluster[face[1]] == 0 || patch.inCluster[face[2]] == 0) continue;
     Vec3 triangle[3];
     shiftedFace(patch, end, face, {}, triangle);
-    appendAxisExtents(piece, triangle, clearance, patch.groupAxes);
+    appendSeparatingAxes(piece, triangle, clearance, patch.groupAxes);
     patch.groupAxesEnd.push_back(patch.groupAxes.size());
   }
   for (Index v = 0; v < patch.vertexCount(); ++v) {
     if (patch.inCluster[v] == 0) continue;
     const Vec3 point = end.applyInverse(patch.positions[v]);
     const Vec3 node[3] = {point, point, point};
-    appendAxisExtents(piece, node, clearance, patch.groupAxes);
+    appendSeparatingAxes(piece, node, clearance, patch.groupAxes);
     patch.groupAxesEnd.push_back(patch.groupAxes.size());
   }
 }
@@ -502,7 +492,7 @@ void gatherGroupAxes(const ToolModel& piece, const Pose& end, Real clearance, Se
 // the group, and of every node of it (their axes gathered by gatherGroupAxes).
 Real shortestClearingShift(const SeparationPatch& patch, const Vec3& direction, Real least) {
   Real shift = least;
-  const AxisExtents* axes = patch.groupAxes.data();
+  const SeparatingAxis* axes = patch.groupAxes.data();
   for (bool raised = true; raised;) {
     raised = false;
     std::size_t begin = 0;

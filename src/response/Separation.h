@@ -81,7 +81,7 @@ namespace thintool {
 
 /// A unit separating axis (piece frame) with the extents along it of the piece, grown by a length,
 /// and of a triangle.
-struct AxisExtents {
+struct SeparatingAxis {
   Vec3 axis;
   Real pieceLow = 0;
   Real pieceHigh = 0;
@@ -113,7 +113,7 @@ struct SeparationPatch {
   std::vector<Vec3> carried;  ///< scratch: where the last resort would carry each node of the group
   /// Scratch of the translation that moves stuck faces together: the separating axes of each face
   /// and node of the group, each run ending at its groupAxesEnd entry.
-  std::vector<AxisExtents> groupAxes;
+  std::vector<SeparatingAxis> groupAxes;
   std::vector<std::size_t> groupAxesEnd;
 
   Index vertexCount() const { return static_cast<Index>(positions.size()); }

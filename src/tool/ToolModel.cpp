@@ -388,13 +388,7 @@ ToolModel buildToolModel(const ConvexMesh& mesh, const ToolModelSettings& settin
     const Real normalLength = length(plane.normal);
     if (normalLength > Real(1e-12)) {
       extent.axis = plane.normal / normalLength;
-      extent.low = std::numeric_limits<Real>::max();
-      extent.high = -extent.low;
-      for (const Vec3& corner : mesh.vertices) {
-        const Real p = dot(extent.axis, corner);
-        extent.low = std::min(extent.low, p);
-        extent.high = std::max(extent.high, p);
-      }
+      projectedInterval(extent.axis, mesh.vertices.data(), mesh.vertices.size(), extent.low, extent.high);
     }
     model.planeAxes.push_back(extent);
   }
