@@ -206,6 +206,7 @@ GripperRun runGripper(const GripperSettings& settings) {
   if (settings.thinTool) {
     ToolOptions options;
     options.response.friction.enabled = true;
+    options.bullet.deformableNodeContacts = settings.thinToolNodeContacts;
     for (int f = 0; f < 2; ++f) tools[f] = &addTool(world, *gripper.fingers[f], options);
   }
 

@@ -10,6 +10,7 @@
 #include <thintool/bullet/Convert.h>
 #include <thintool/bullet/Tool.h>
 
+#include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
 #include <BulletSoftBody/btSoftBodyInternals.h>
 
 #include <algorithm>
@@ -66,6 +67,29 @@ btVector3 impulseOnRigid(const btDeformableRigidContactConstraint& constraint) {
   return -(inverseMass.inverse() * (constraint.m_total_normal_dv + constraint.m_total_tangent_dv));
 }
 
+// A node contact's impulse matrix against a multibody link, as Bullet builds its own
+// (btSoftBodyInternals.h, CollideSDF_RD::DoNode): the link's response to a unit impulse along the
+// contact's normal and two tangents, through the multibody's Jacobian at the node, added to the
+// node's own inverse mass, inverted in the contact's frame; the Jacobians stay with the contact,
+// for the solve to apply its impulses to the multibody with.
+void impulseMatrixOnLink(btSoftBody::DeformableNodeRigidContact& contact, const btMultiBodyLinkCollider& link) {
+  const btVector3& normal = contact.m_cti.m_normal;
+  contact.t1 = generateUnitOrthogonalVector(normal);
+  contact.t2 = btCross(normal, contact.t1);
+  findJacobian(&link, contact.jacobianData_normal, contact.m_node->m_x, normal);
+  findJacobian(&link, contact.jacobianData_t1, contact.m_node->m_x, contact.t1);
+  findJacobian(&link, contact.jacobianData_t2, contact.m_node->m_x, contact.t2);
+  const btMatrix3x3 toContact(normal.getX(), normal.getY(), normal.getZ(), contact.t1.getX(), contact.t1.getY(),
+                              contact.t1.getZ(), contact.t2.getX(), contact.t2.getY(), contact.t2.getZ());
+  const btMatrix3x3 linkResponse =
+      OuterProduct(&contact.jacobianData_normal.m_jacobians[0], &contact.jacobianData_t1.m_jacobians[0],
+                   &contact.jacobianData_t2.m_jacobians[0],
+                   &contact.jacobianData_normal.m_deltaVelocitiesUnitImpulse[0],
+                   &contact.jacobianData_t1.m_deltaVelocitiesUnitImpulse[0],
+                   &contact.jacobianData_t2.m_deltaVelocitiesUnitImpulse[0], link.m_multiBody->getNumDofs() + 6);
+  contact.m_c0 = toContact.transpose() * (contact.m_node->m_effectiveMass_inv + linkResponse).inverse() * toContact;
+}
+
 }  // namespace
 
 namespace detail {
@@ -95,6 +119,7 @@ void SoftBodySolverImpl::feedToolNodeContacts(btSoftBody& body, Tool& tool) {
     body.m_nodeRigidContacts.pop_back();
   }
   const btRigidBody* rigid = btRigidBody::upcast(&object);
+  const btMultiBodyLinkCollider* link = btMultiBodyLinkCollider::upcast(&object);
   const btScalar bodyInverseMass = rigid != nullptr ? rigid->getInvMass() : btScalar(0);
   static const btMatrix3x3 noInverseInertia(0, 0, 0, 0, 0, 0, 0, 0, 0);
   const btMatrix3x3& inverseInertia = rigid != nullptr ? rigid->getInvInertiaTensorWorld() : noInverseInertia;
@@ -106,6 +131,7 @@ void SoftBodySolverImpl::feedToolNodeContacts(btSoftBody& body, Tool& tool) {
     // Bullet's coefficient always, a plate spinning at 178 rad/s dragged a sheet's nodes to 2.3 km/s
     // (generated seed 377).
     const btScalar friction = btScalar(pair->holdStaticFriction);
+    const btScalar skin = btScalar(std::max(pair->skinInEffect, Real(0)));
     for (const PatchContact& found : pair->detection.contacts) {
       if (found.kind != ContactKind::SoftNode || found.softNodes[0] >= static_cast<Index>(body.m_nodes.size())) {
         continue;
@@ -113,7 +139,7 @@ void SoftBodySolverImpl::feedToolNodeContacts(btSoftBody& body, Tool& tool) {
       btSoftBody::Node& node = body.m_nodes[static_cast<int>(found.softNodes[0])];
       if (node.m_battach != 0 || !(node.m_im + bodyInverseMass > 0)) continue;
       btSoftBody::DeformableNodeRigidContact contact;
-      contact.t1 = contact.t2 = btVector3(0, 0, 0);  // the multibody's tangents, unused for a rigid body
+      contact.t1 = contact.t2 = btVector3(0, 0, 0);  // a multibody's tangents, unused for a rigid body
       contact.m_node = &node;
       contact.m_cti.m_colObj = &object;
       contact.m_cti.m_normal = toBt(found.normal);
@@ -122,10 +148,11 @@ void SoftBodySolverImpl::feedToolNodeContacts(btSoftBody& body, Tool& tool) {
       // over: Bullet's contact would push it out within the step, as a velocity, and a blade turning
       // 123° a step flung a sheet so at 266 m/s (generated seed 280). The last word puts it back
       // after the solve, a move that carries no velocity of its own.
-      if (!(contact.m_cti.m_offset >= 0)) continue;
+      if (!(contact.m_cti.m_offset >= -skin)) continue;
       const btVector3 arm = node.m_x - object.getWorldTransform().getOrigin();
       contact.m_c0 = ImpulseMatrix(1, node.m_effectiveMass_inv, bodyInverseMass, inverseInertia, arm);
       contact.m_c1 = arm;
+      if (link != nullptr) impulseMatrixOnLink(contact, *link);
       contact.m_c2 = node.m_im;
       contact.m_c3 = friction;
       contact.m_c4 = hardness;

@@ -16,7 +16,6 @@
 
 #include <BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h>
 #include <BulletDynamics/Dynamics/btRigidBody.h>
-#include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
 #include <BulletSoftBody/btSoftBody.h>
 #include <BulletSoftBody/btSoftBodyInternals.h>
 #include <BulletSoftBody/btSoftBodySolvers.h>
@@ -179,11 +178,10 @@ void handToStock(btSoftBody& softBody, const btCollisionObjectWrapper* toolWrap)
 }
 
 // Whether ThinTool's detection can stand in for Bullet's deformable node contacts of the pair: a
-// body with faces whose rigid contacts are the deformable ones (SDF_RD), and a tool that is not a
-// multibody link, whose contact Bullet builds from the multibody's Jacobians.
-bool feedsDeformableSolve(const btSoftBody& softBody, const btCollisionObject& toolBody) {
-  return softBody.m_faces.size() > 0 && (softBody.m_cfg.collisions & btSoftBody::fCollision::SDF_RD) != 0 &&
-         btMultiBodyLinkCollider::upcast(&toolBody) == nullptr;
+// body with faces whose rigid contacts are the deformable ones (SDF_RD, which makes Bullet's node
+// contacts with rigid bodies and multibody links alike).
+bool feedsDeformableSolve(const btSoftBody& softBody) {
+  return softBody.m_faces.size() > 0 && (softBody.m_cfg.collisions & btSoftBody::fCollision::SDF_RD) != 0;
 }
 
 // Bullet's own node contact's coefficient (CollideSDF_RS): the soft body's kDF times the rigid
@@ -305,7 +303,7 @@ void ToolAlgorithm::processPiece(PieceStep& step, const btCollisionObjectWrapper
     }
     const bool feeds = state.stock == StockReason::DeformableWorld && step.swept &&
                        m_tool.state().options.bullet.deformableNodeContacts &&
-                       feedsDeformableSolve(step.softBody, step.toolBody);
+                       feedsDeformableSolve(step.softBody);
     if (feeds && isFinite(step.pose) && isFinite(step.previousPose)) {
       detectForDeformableSolve(step);
     }

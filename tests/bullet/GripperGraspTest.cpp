@@ -77,6 +77,28 @@ TEST(GripperGraspDeformable, TheLastWordAloneKeepsTheFingersOutOfTheCube) {
   EXPECT_NEAR(run.appliedLoad, run.reportedLoad, 0.01 * run.bodyLoad);
 }
 
+// With ThinTool's node contacts in Bullet's solve on the finger links instead
+// (BulletSettings::deformableNodeContacts: each acts through the multibody's Jacobian at its node,
+// as Bullet's own does), and still none of Bullet's face contacts, the fingers lift the cube at
+// kDF 2 and carry its weight; stock Bullet's fingers pass through it.
+TEST(GripperGraspDeformable, ThinToolsNodeContactsOnTheFingerLinksLiftTheCube) {
+  GripperSettings settings;
+  settings.world = WorldKind::Deformable;
+  settings.bulletFingerContacts = false;
+  settings.thinToolNodeContacts = true;
+  settings.bodyFriction = 2;
+  const GripperRun run = runGripper(settings);
+  ASSERT_TRUE(run.finite);
+  expectLiftedCleanly(run);
+  EXPECT_GT(run.grip, 5) << "the fingers squeeze";
+  EXPECT_NEAR(run.reportedLoad, run.liftLoad, 0.03 * run.bodyLoad);
+  EXPECT_NEAR(run.reportedLoad, run.bodyLoad, 0.1 * run.bodyLoad);
+
+  settings.thinTool = false;
+  const GripperRun stock = runGripper(settings);
+  EXPECT_GT(stock.crossed, 0) << "stock Bullet's fingers pass through the cube";
+}
+
 INSTANTIATE_TEST_SUITE_P(Bodies, GripperGrasp, ::testing::Values(GraspedBody::Cube, GraspedBody::Cable),
                          [](const ::testing::TestParamInfo<GraspedBody>& param) {
                            return std::string(graspedBodyName(param.param));

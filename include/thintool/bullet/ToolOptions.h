@@ -123,8 +123,8 @@ struct BulletSettings {
   /// response.friction, on by default; with frictionFromBodies Bullet's coefficient, the soft
   /// body's kDF times the tool's friction); a node the tool's sweep passed over is left to the last
   /// word, whose move carries no velocity, where the contact would push it out as one. Bullet's
-  /// face contacts stay Bullet's. Only for a tool that is a btRigidBody or a plain
-  /// btCollisionObject: a multibody link keeps Bullet's node contacts. Off by default.
+  /// face contacts stay Bullet's. On a multibody link the contact acts through the multibody's
+  /// Jacobian at the node, as Bullet's own does. Off by default.
   bool deformableNodeContacts = false;
 };
 
