@@ -124,8 +124,8 @@ struct BulletSettings {
   /// body's kDF times the tool's friction); a node the tool's sweep passed over is left to the last
   /// word, whose move carries no velocity, where the contact would push it out as one. Bullet's
   /// face contacts stay Bullet's. On a multibody link the contact acts through the multibody's
-  /// Jacobian at the node, as Bullet's own does. Off, the tool keeps Bullet's own node contacts.
-  bool deformableNodeContacts = true;
+  /// Jacobian at the node, as Bullet's own does. Off by default.
+  bool deformableNodeContacts = false;
 };
 
 struct ToolOptions {
