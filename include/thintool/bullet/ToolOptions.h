@@ -124,9 +124,9 @@ struct BulletSettings {
   /// body's kDF times the tool's friction); a node the tool's sweep passed over is left to the last
   /// word, whose move carries no velocity, where the contact would push it out as one. Bullet's
   /// face contacts stay Bullet's. On a multibody link the contact acts through the multibody's
-  /// Jacobian at the node, as Bullet's own does. Off by default: pressing a floating mass-spring
-  /// ball of 4,096 faces, Bullet's solve set the contacts' nodes sliding along the plate at over
-  /// 200 m/s within a few steps (docs/guide/worlds.md).
+  /// Jacobian at the node, as Bullet's own does. Off by default, for its cost where Bullet's solve
+  /// flings a body's nodes: the swept detection then meets most of the body in every step
+  /// (docs/guide/worlds.md).
   bool deformableNodeContacts = false;
 };
 
