@@ -216,7 +216,10 @@ SoftBallScene::SoftBallScene(const SceneSettings& settings)
   m_ball->m_cfg.kDP = btScalar(1 - std::pow(0.95, 60 * settings.timeStep / settings.substeps));
   m_ball->setTotalMass(1);
   m_ball->getCollisionShape()->setMargin(btScalar(variant.margin));
-  m_world->addSoftBody(m_ball);
+  // In the deformable world the finer balls' lighter nodes get springs of the same frequency:
+  // kDeformableSpring on the 4,096-face ball's nodes, a 31st of the 128-face ball's, flung them
+  // within a few steps of the plate's touch.
+  m_world->addSoftBody(m_ball, ballSpringFor(*m_ball));
 
   const btScalar halfThickness = btScalar(settings.toolThickness / 2);
   const btVector3 half = settings.tool == ToolShape::Needle ? btVector3(0.5, halfThickness, halfThickness)

@@ -19,14 +19,13 @@
 
 namespace thintool::scenes {
 
-double deformableSpringFor(const btSoftBody& body, double stiffness, double step) {
-  // The ball: 1 kg over its nodes, kDeformableSpring at 1/60 s. A spring's frequency goes as
-  // sqrt(k / node mass): k scales with the node's mass and 1/step². A quarter of that, for bodies
-  // whose nodes have more links than the ball's: at the ball's own share, Bullet's solve of a
-  // generated tetrahedral block diverged with no tool near it (seed 16, 633 m/s).
-  constexpr double kBallNodes = 66;  // CreateEllipsoid's nodes at resolution 63
-  constexpr double kBallStep = 1.0 / 60;
-  constexpr double kShare = 0.25;
+namespace {
+constexpr double kBallNodes = 66;  // CreateEllipsoid's nodes at resolution 63
+constexpr double kBallStep = 1.0 / 60;
+}  // namespace
+
+double ballSpringFor(const btSoftBody& body) {
+  // A spring's frequency goes as sqrt(k / node mass): k scales with the node's mass.
   double mass = 0;
   int free = 0;
   for (int i = 0; i < body.m_nodes.size(); ++i) {
@@ -34,9 +33,17 @@ double deformableSpringFor(const btSoftBody& body, double stiffness, double step
     mass += 1 / double(body.m_nodes[i].m_im);
     ++free;
   }
-  if (free == 0 || !(step > 0)) return kDeformableSpring * stiffness;
-  const double nodeMass = mass / free;
-  return kShare * kDeformableSpring * stiffness * (nodeMass * kBallNodes) * (kBallStep / step) * (kBallStep / step);
+  if (free == 0) return kDeformableSpring;
+  return kDeformableSpring * (mass / free * kBallNodes);
+}
+
+double deformableSpringFor(const btSoftBody& body, double stiffness, double step) {
+  // The ball's for the body's node mass, and for the step: k scales with 1/step². A quarter of
+  // that, for bodies whose nodes have more links than the ball's: at the ball's own share, Bullet's
+  // solve of a generated tetrahedral block diverged with no tool near it (seed 16, 633 m/s).
+  constexpr double kShare = 0.25;
+  if (!(step > 0)) return kDeformableSpring * stiffness;
+  return kShare * ballSpringFor(body) * stiffness * (kBallStep / step) * (kBallStep / step);
 }
 
 std::unique_ptr<btSoftBodySolver> softSolverFor(WorldKind kind, CollisionConfiguration* thinTool) {

@@ -43,6 +43,10 @@ enum class WorldKind {
 inline constexpr double kDeformableSpring = 100;
 inline constexpr double kDeformableSpringDamping = 1;
 
+/// Springs for a ball of any resolution and mass in the deformable world: each node's spring
+/// frequency that of the scenes' 1 kg ball of 66 nodes at kDeformableSpring.
+double ballSpringFor(const btSoftBody& body);
+
 /// Springs for a body of any mesh, mass and step in the deformable world: a quarter as stiff, for
 /// its mass per node and the step (s), as the scenes' 1 kg ball is at kDeformableSpring and 1/60 s,
 /// times stiffness (0 to 1, the classic material's kLST). Bullet's deformable solve diverges on
