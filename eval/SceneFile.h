@@ -169,7 +169,7 @@ struct SceneSpec {
   bool scanFaces = false;      ///< ThinTool: swept detection reads every soft face instead of walking a face tree (BulletSettings::scanFaces)
   /// ThinTool in the deformable world: its detection gives Bullet's solve the tool's node contacts
   /// (BulletSettings::deformableNodeContacts)
-  bool deformableNodeContacts = false;
+  bool deformableNodeContacts = true;
   bool followArc = false;      ///< ThinTool: swept detection confirms a node's chord on the turning tool's arc (ToolOptions::sweptFollowsArc)
 };
 

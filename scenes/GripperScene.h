@@ -40,8 +40,8 @@ struct GripperSettings {
   /// Bullet's not at all).
   bool bulletFingerContacts = true;
   /// Deformable world only, with ThinTool: the fingers' node contacts in Bullet's solve come from
-  /// ThinTool's swept detection (BulletSettings::deformableNodeContacts), not Bullet's.
-  bool thinToolNodeContacts = false;
+  /// ThinTool's swept detection (BulletSettings::deformableNodeContacts); false keeps Bullet's.
+  bool thinToolNodeContacts = true;
   double timeStep = 1.0 / 240;     ///< s
   double gripForce = 50;           ///< N, each finger motor's largest force
   double squeeze = 0.01;           ///< m, how far each finger is driven into the body

@@ -44,9 +44,9 @@ inside the soft body, pierced faces, penetration deeper than 0.1 mm, non-finite 
                      (EnergyGuardSettings::boundForcesNextStep)
   --scan-faces       swept detection reads every soft face instead of walking a face tree
                      (BulletSettings::scanFaces)
-  --deformable-contacts
-                     with --deformable: ThinTool's detection gives Bullet's solve the tool's node
-                     contacts (BulletSettings::deformableNodeContacts)
+  --bullet-node-contacts
+                     with --deformable: the tools keep Bullet's own node contacts in its solve,
+                     not ThinTool's (BulletSettings::deformableNodeContacts off)
   --follow-arc       swept detection confirms a node's chord on a turning tool's arc
                      (ToolOptions::sweptFollowsArc)
   --frictionless     ThinTool's friction off (FrictionSettings); on by default, with stock
@@ -132,7 +132,7 @@ int main(int argc, char** argv) {
   bool energyGuard = true;
   bool boundForces = true;
   bool scanFaces = false;
-  bool deformableContacts = false;
+  bool bulletNodeContacts = false;
   bool followArc = false;
   bool frictionless = false;
   bool softMultiBody = false;
@@ -173,8 +173,8 @@ int main(int argc, char** argv) {
         boundForces = false;
       } else if (arg == "--scan-faces") {
         scanFaces = true;
-      } else if (arg == "--deformable-contacts") {
-        deformableContacts = true;
+      } else if (arg == "--bullet-node-contacts") {
+        bulletNodeContacts = true;
       } else if (arg == "--follow-arc") {
         followArc = true;
       } else if (arg == "--frictionless") {
@@ -227,7 +227,7 @@ int main(int argc, char** argv) {
       scene.energyGuard = energyGuard;
       scene.boundForces = boundForces;
       scene.scanFaces = scanFaces;
-      scene.deformableNodeContacts = deformableContacts;
+      scene.deformableNodeContacts = !bulletNodeContacts;
       scene.followArc = followArc;
       if (frictionless) scene.friction = false;
       if (verbose) std::printf("%s\n", describeScene(scene).c_str());
@@ -270,7 +270,7 @@ int main(int argc, char** argv) {
                 holds ? "" : " --no-holds", reach.c_str(), energyGuard ? "" : " --no-energy-guard",
                 boundForces ? "" : " --no-force-bound", scanFaces ? " --scan-faces" : "", followArc ? " --follow-arc" : "",
                 frictionless ? " --frictionless" : "", softMultiBody ? " --soft-multibody" : "",
-                deformable ? " --deformable" : "", deformableContacts ? " --deformable-contacts" : "",
+                deformable ? " --deformable" : "", bulletNodeContacts ? " --bullet-node-contacts" : "",
                 generatorOptions.bulletKinds ? " --bullet-kinds" : "",
                 withinThickness ? " --within-thickness" : "");
     std::fflush(stdout);

@@ -10,7 +10,7 @@
 // Where the viewer is built, --view shows one grasp (the cube, or --cable; ThinTool's, or --stock)
 // and --screenshot writes its frame at 4 s, lifted and held, to a PNG.
 //
-//   gripper_grasp [--deformable [--no-finger-contacts] [--thintool-contacts]] [--kdf KDF]
+//   gripper_grasp [--deformable [--no-finger-contacts] [--bullet-node-contacts]] [--kdf KDF]
 //                 [--dt SECONDS] [--grip NEWTONS] [--view | --screenshot FILE.png] [--cable] [--stock]
 
 #include "GripperScene.h"
@@ -80,12 +80,12 @@ int main(int argc, char** argv) {
       base.world = WorldKind::Deformable;
     } else if (std::strcmp(argv[i], "--no-finger-contacts") == 0) {
       base.bulletFingerContacts = false;
-    } else if (std::strcmp(argv[i], "--thintool-contacts") == 0) {
-      base.thinToolNodeContacts = true;
+    } else if (std::strcmp(argv[i], "--bullet-node-contacts") == 0) {
+      base.thinToolNodeContacts = false;
     } else if (std::strcmp(argv[i], "--kdf") == 0 && hasValue) {
       base.bodyFriction = std::atof(argv[++i]);
     } else {
-      std::fprintf(stderr, "usage: gripper_grasp [--deformable [--no-finger-contacts] [--thintool-contacts]] "
+      std::fprintf(stderr, "usage: gripper_grasp [--deformable [--no-finger-contacts] [--bullet-node-contacts]] "
                            "[--kdf KDF] [--dt SECONDS] [--grip NEWTONS] [--view | --screenshot FILE.png] [--cable] "
                            "[--stock]\n");
       return 2;

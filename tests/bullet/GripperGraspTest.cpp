@@ -46,11 +46,12 @@ TEST_P(GripperGrasp, TheFingersLiftTheBodyAndFeelItsWeight) {
   EXPECT_NEAR(run.liftLoad, run.bodyLoad, 0.14 * run.bodyLoad);
 }
 
-// In Bullet's deformable world the fingers meet Bullet's own contacts (SDF_MDF), and the cube, a
-// mass-spring body, rises with them at Bullet's grasp demo's kDF of 2: ThinTool's report of what
-// those contacts and its last word put on the fingers (holdWrench) is what the lift's motor
-// carries beyond the gripper's weight, and near the cube's momentum balance.
-TEST(GripperGraspDeformable, TheFingersReportWhatBulletsContactsCarry) {
+// In Bullet's deformable world the fingers meet Bullet's face contacts (SDF_MDF) and ThinTool's
+// node contacts in its solve, and the cube, a mass-spring body, rises with them at Bullet's grasp
+// demo's kDF of 2: ThinTool's report of what those contacts and its last word put on the fingers
+// (holdWrench) is what the lift's motor carries beyond the gripper's weight, and near the cube's
+// momentum balance.
+TEST(GripperGraspDeformable, TheFingersReportWhatTheSolvesContactsCarry) {
   GripperSettings settings;
   settings.world = WorldKind::Deformable;
   settings.bodyFriction = 2;
@@ -61,15 +62,17 @@ TEST(GripperGraspDeformable, TheFingersReportWhatBulletsContactsCarry) {
   EXPECT_NEAR(run.reportedLoad, run.bodyLoad, 0.1 * run.bodyLoad);
 }
 
-// Without Bullet's contacts on the fingers, ThinTool's last word alone keeps the fingers out of the
-// cube in the deformable world, where stock Bullet's pass through it. The last word has no friction
-// there (no holds, no contacts of its own in Bullet's solve), so the squeezed cube is not lifted
-// (docs/results/gripper.md). What ThinTool applied to the fingers, their reports' reaction, is all
-// they carried, and the lift's motor says the same.
+// Without Bullet's face contacts on the fingers and with its own node contacts
+// (BulletSettings::deformableNodeContacts off), ThinTool's last word alone keeps the fingers out of
+// the cube in the deformable world, where stock Bullet's pass through it. The last word has no
+// friction there (no holds), so the squeezed cube is not lifted (docs/results/gripper.md). What
+// ThinTool applied to the fingers, their reports' reaction, is all they carried, and the lift's
+// motor says the same.
 TEST(GripperGraspDeformable, TheLastWordAloneKeepsTheFingersOutOfTheCube) {
   GripperSettings settings;
   settings.world = WorldKind::Deformable;
   settings.bulletFingerContacts = false;
+  settings.thinToolNodeContacts = false;
   const GripperRun run = runGripper(settings);
   ASSERT_TRUE(run.finite);
   expectNothingThroughTheFingers(run);
@@ -77,10 +80,10 @@ TEST(GripperGraspDeformable, TheLastWordAloneKeepsTheFingersOutOfTheCube) {
   EXPECT_NEAR(run.appliedLoad, run.reportedLoad, 0.01 * run.bodyLoad);
 }
 
-// With ThinTool's node contacts in Bullet's solve on the finger links instead
-// (BulletSettings::deformableNodeContacts: each acts through the multibody's Jacobian at its node,
-// as Bullet's own does), and still none of Bullet's face contacts, the fingers lift the cube at
-// kDF 2 and carry its weight; stock Bullet's fingers pass through it.
+// With ThinTool's node contacts in Bullet's solve on the finger links instead (the default,
+// BulletSettings::deformableNodeContacts: each acts through the multibody's Jacobian at its node, as
+// Bullet's own does), and still none of Bullet's face contacts, the fingers lift the cube at kDF 2
+// and carry its weight; stock Bullet's fingers pass through it.
 TEST(GripperGraspDeformable, ThinToolsNodeContactsOnTheFingerLinksLiftTheCube) {
   GripperSettings settings;
   settings.world = WorldKind::Deformable;

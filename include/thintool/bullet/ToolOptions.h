@@ -117,17 +117,15 @@ struct BulletSettings {
   /// ThinTool's swept detection (ToolOptions::swept), in place of Bullet's own, which asks the
   /// tool's distance field, at one instant, how far each node's predicted place lies inside it, and
   /// answers with the nearest side: a node carried past a thin tool's mid-plane is pushed out of
-  /// the far side. Each node the detection finds heading into the tool grown by the skin, still in
-  /// front of the plane of the face it comes through at the start of the step, gets a contact on
-  /// that plane, with Bullet's hardness (kKHR or kCHR) and ThinTool's friction (ToolOptions::
+  /// the far side. Each node the detection finds heading into the tool grown by the skin, still
+  /// outside the tool's surface at the start of the step (behind the grown face it comes through by
+  /// less than the skin), gets a contact on that face's plane, with Bullet's hardness (kKHR or kCHR) and ThinTool's friction (ToolOptions::
   /// response.friction, on by default; with frictionFromBodies Bullet's coefficient, the soft
   /// body's kDF times the tool's friction); a node the tool's sweep passed over is left to the last
   /// word, whose move carries no velocity, where the contact would push it out as one. Bullet's
   /// face contacts stay Bullet's. On a multibody link the contact acts through the multibody's
-  /// Jacobian at the node, as Bullet's own does. Off by default, for its cost where Bullet's solve
-  /// flings a body's nodes: the swept detection then meets most of the body in every step
-  /// (docs/guide/worlds.md).
-  bool deformableNodeContacts = false;
+  /// Jacobian at the node, as Bullet's own does. Off, the tool keeps Bullet's own node contacts.
+  bool deformableNodeContacts = true;
 };
 
 struct ToolOptions {
