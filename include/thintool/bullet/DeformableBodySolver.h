@@ -24,8 +24,11 @@
 /// tools with the energy guard on (EnergyGuardSettings), no node of a body the last word reached moves faster than speedFactor
 /// times the faster of the tools' fastest corner and restingSpeed, or than the body's fastest node
 /// at the start of the step: the guard's speed bound, without its energy bound or its bound on the
-/// next step's forces. The contacts inside the solve stay Bullet's (ToolDiagnostics::stockPairs
-/// counts those pairs as deformableWorld), and there are no holds in the solve. What those contacts
+/// next step's forces. A swept tool's node contacts inside the solve are ThinTool's
+/// (BulletSettings::deformableNodeContacts, on by default; on a multibody link through the
+/// multibody's Jacobian), its face contacts Bullet's; with that option off, or for a discrete tool,
+/// the pair's contacts are all Bullet's (ToolDiagnostics::stockPairs counts those pairs as
+/// deformableWorld). There are no holds in the solve. What those contacts
 /// applied to a tool's body over the step (each keeps the velocity change its impulses gave the soft
 /// side, m_c5 times each impulse, in m_total_normal_dv and m_total_tangent_dv) is the tool's load,
 /// with the last word's velocity changes: ToolStepReport::holdWrench.

@@ -83,7 +83,9 @@ struct LastWordDiagnostics {
 /// why. Bullet then collides them as it would without ThinTool, and the last word leaves the soft
 /// body alone, except a faceless one: the last word still keeps its nodes out of the tool.
 struct StockPairs {
-  /// The soft body's solver is not the classic one (btDeformableMultiBodyDynamicsWorld).
+  /// The soft body's solver is not the classic one (btDeformableMultiBodyDynamicsWorld), and the
+  /// tool keeps Bullet's node contacts there (a discrete tool, a body without faces, or
+  /// BulletSettings::deformableNodeContacts off).
   Index deformableWorld = 0;
   /// The soft body collides with rigid bodies by its clusters (fCollision::CL_RS), whose
   /// impulses ThinTool's node moves would fight.
