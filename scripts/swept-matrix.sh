@@ -48,8 +48,9 @@ summary() {
   summary soft-multibody 20
   echo
   echo "In btDeformableMultiBodyDynamicsWorld, the ball a mass-spring body without pressure"
-  echo "(scenes::WorldKind::Deformable), Bullet's pairs and ThinTool's last word after its implicit solve"
-  echo "(the paper's algorithm has no last word, so it is stock's contact there); 1 to 50 m/s, since"
+  echo "(scenes::WorldKind::Deformable): Bullet's face contacts, ThinTool's node contacts in its implicit"
+  echo "solve and ThinTool's last word after it (the paper's algorithm is discrete and has no last word,"
+  echo "so it is stock's contact there); 1 to 50 m/s, since"
   echo "Bullet's implicit solve of this ball is slow at 0.1 m/s with stock and ThinTool alike:"
   echo
   summary deformable 16
