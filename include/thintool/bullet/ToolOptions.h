@@ -114,7 +114,8 @@ struct BulletSettings {
   bool scanFaces = false;
   /// In btDeformableMultiBodyDynamicsWorld, with thintool::DeformableBodySolver: the tool's node
   /// contacts in Bullet's implicit solve (btSoftBody::DeformableNodeRigidContact) come from
-  /// ThinTool's swept detection (ToolOptions::swept), in place of Bullet's own, which asks the
+  /// ThinTool's swept detection (ToolOptions::swept), in place of Bullet's own (fCollision::SDF_RDN,
+  /// which Bullet's deformable demos leave off, keeping only face contacts), which asks the
   /// tool's distance field, at one instant, how far each node's predicted place lies inside it, and
   /// answers with the nearest side: a node carried past a thin tool's mid-plane is pushed out of
   /// the far side. Each node the detection finds heading into the tool grown by the skin, still
