@@ -96,11 +96,11 @@ namespace detail {
 
 // The tool's node contacts with the body in Bullet's solve: those ThinTool's detection found in
 // this step's collision pass (BulletSettings::deformableNodeContacts) in place of Bullet's own. Each
-// is built as Bullet builds its own for a rigid body (btSoftBodyInternals.h, CollideSDF_RD): on the
-// plane the node must stay in front of, the offset its distance there at the start of the step (the
-// node may close that far in the step), Bullet's coefficients, the impulse matrix of the node's
-// effective mass and the body's, resolved at the node's place now. Only nodes in front of their
-// plane at the start get one.
+// is built as Bullet builds its own (btSoftBodyInternals.h, CollideSDF_RD): on the plane the node
+// must stay in front of, the offset its distance there at the start of the step (the node may close
+// that far in the step), Bullet's coefficients, the impulse matrix of the node's effective mass and
+// the tool's (a rigid body's, or a multibody link's through the multibody's Jacobian), resolved at
+// the node's place now. Only nodes outside the tool's surface at the start get one.
 void SoftBodySolverImpl::feedNodeContacts(btSoftBody& body) {
   for (Tool* tool : m_configuration.tools()) feedToolNodeContacts(body, *tool);
 }
@@ -144,10 +144,14 @@ void SoftBodySolverImpl::feedToolNodeContacts(btSoftBody& body, Tool& tool) {
       contact.m_cti.m_colObj = &object;
       contact.m_cti.m_normal = toBt(found.normal);
       contact.m_cti.m_offset = btScalar(dot(found.normal, toVec3(node.m_x)) + found.offset);
-      // A node already behind the plane at the start of the step is one the tool's sweep passed
-      // over: Bullet's contact would push it out within the step, as a velocity, and a blade turning
-      // 123° a step flung a sheet so at 266 m/s (generated seed 280). The last word puts it back
-      // after the solve, a move that carries no velocity of its own.
+      // A node already behind the tool's surface at the start of the step (behind the grown face's
+      // plane by more than the skin) is one the tool's sweep passed over: Bullet's contact would
+      // push it out within the step, as a velocity, and a blade turning 123° a step flung a sheet
+      // so at 266 m/s (generated seed 280). The last word puts it back after the solve, a move that
+      // carries no velocity of its own. A node within the skin keeps its contact, whose negative
+      // offset the solve works off as it does its own: the nodes a finger holds sit on that plane,
+      // and without it lost their contact, and its friction, every other step (the gripper's cube
+      // slipped 140 mm out of the fingers at kDF 2).
       if (!(contact.m_cti.m_offset >= -skin)) continue;
       const btVector3 arm = node.m_x - object.getWorldTransform().getOrigin();
       contact.m_c0 = ImpulseMatrix(1, node.m_effectiveMass_inv, bodyInverseMass, inverseInertia, arm);

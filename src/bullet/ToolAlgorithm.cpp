@@ -177,9 +177,9 @@ void handToStock(btSoftBody& softBody, const btCollisionObjectWrapper* toolWrap)
   }
 }
 
-// Whether ThinTool's detection can stand in for Bullet's deformable node contacts of the pair: a
-// body with faces whose rigid contacts are the deformable ones (SDF_RD, which makes Bullet's node
-// contacts with rigid bodies and multibody links alike).
+// Whether ThinTool's detection can give the deformable solve the pair's node contacts: a body with
+// faces whose rigid contacts are the deformable ones (SDF_RD; Bullet's own node contacts come with
+// SDF_RDN, with rigid bodies and multibody links alike).
 bool feedsDeformableSolve(const btSoftBody& softBody) {
   return softBody.m_faces.size() > 0 && (softBody.m_cfg.collisions & btSoftBody::fCollision::SDF_RD) != 0;
 }
