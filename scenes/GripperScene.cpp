@@ -227,6 +227,8 @@ GripperRun runGripper(const GripperSettings& settings) {
   const std::vector<std::array<int, 3>> faces = faceIndices(*body);
   std::array<BoxGroundTruth, 2> truths;
   double restHeight = 0;
+  std::vector<Point> restNodes;
+  std::vector<std::size_t> held;
   double sinkAtLift = 0;
   double lastMomentum = verticalMomentum(*body);
   const double gripperWeight = (kCarriageMass + 2 * kFingerMass) * kGravity;
@@ -257,7 +259,16 @@ GripperRun runGripper(const GripperSettings& settings) {
       if (step >= settle) truths[f].update(box, nodes, faces);
     }
     const double momentum = verticalMomentum(*body);
-    if (step == settle - 1) restHeight = meanHeight(*body);
+    if (step == settle - 1) {
+      restHeight = meanHeight(*body);
+      restNodes = nodes;
+    }
+    if (step == close - 1) {
+      const double depth = gripper.fingers[0]->getWorldTransform().getOrigin().z();
+      for (std::size_t i = 0; i < nodes.size(); ++i) {
+        if (std::abs(nodes[i].z - depth) <= double(kFingerHalf.z())) held.push_back(i);
+      }
+    }
     const double fingerHeight = gripper.body.getJointPos(0);
     if (step == lift - 1) sinkAtLift = fingerHeight - meanHeight(*body);
     if (step >= loadFrom && step < hold) {
@@ -274,6 +285,7 @@ GripperRun runGripper(const GripperSettings& settings) {
     }
     if (step == hold - 1) {
       run.rise = meanHeight(*body) - restHeight;
+      for (const std::size_t i : held) run.heldRise += (nodes[i].y - restNodes[i].y) / double(held.size());
       run.lift = fingerHeight;
       run.slip = (fingerHeight - meanHeight(*body)) - sinkAtLift;
     }

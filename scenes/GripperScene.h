@@ -62,6 +62,9 @@ struct GripperSettings {
 /// open 1 s. The load columns are means over the hold's last second, where the body hangs still.
 struct GripperRun {
   double rise = 0;             ///< the body's mean node height at the end of the hold, less at rest (m)
+  /// The same for the nodes between the fingers' front and back ends when the lift began: the
+  /// part they hold, where a long body's ends may hang to the ground (m).
+  double heldRise = 0;
   double lift = 0;             ///< the fingers' rise over the same time (m)
   double slip = 0;             ///< how far the body sank against the fingers during the hold (m)
   double afterRelease = 0;     ///< the body's mean height at the end, less at rest (m)

@@ -103,9 +103,9 @@ int main(int argc, char** argv) {
     return 2;
 #endif
   }
-  std::printf("| body | Bullet | rise / lift (m) | slip (mm) | after release (m) | crossed | deepest (mm) | "
-              "grip (N) | lift motor's load (N) | body's m g + dp/dt (N) | reported (N) | ms a step |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("| body | Bullet | rise / lift (m) | held part's rise (m) | slip (mm) | after release (m) | crossed | "
+              "deepest (mm) | grip (N) | lift motor's load (N) | body's m g + dp/dt (N) | reported (N) | ms a step |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const GraspedBody body : {GraspedBody::Cube, GraspedBody::Cable}) {
     for (const bool thinTool : {false, true}) {
       GripperSettings settings = base;
@@ -118,8 +118,9 @@ int main(int argc, char** argv) {
       char deepest[32];
       const double deepestMillimetres = 1000 * run.deepest;
       std::snprintf(deepest, sizeof deepest, deepestMillimetres < 1e6 ? "%.1f" : "%.3g", deepestMillimetres);
-      std::printf("| %s | %s | %.3f / %.3f | %.1f | %.3f | %d | %s | %.1f | %.2f | %.2f | %s | %.2f |%s\n",
-                  graspedBodyName(body), thinTool ? "ThinTool" : "stock", run.rise, run.lift, 1000 * run.slip,
+      std::printf("| %s | %s | %.3f / %.3f | %.3f | %.1f | %.3f | %d | %s | %.1f | %.2f | %.2f | %s | %.2f |%s\n",
+                  graspedBodyName(body), thinTool ? "ThinTool" : "stock", run.rise, run.lift, run.heldRise,
+                  1000 * run.slip,
                   run.afterRelease, run.crossed, deepest, run.grip, run.liftLoad, run.bodyLoad, reported,
                   run.wallMilliseconds, run.finite ? "" : " not finite");
     }
