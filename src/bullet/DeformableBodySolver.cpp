@@ -70,9 +70,10 @@ btVector3 impulseOnRigid(const btDeformableRigidContactConstraint& constraint) {
 // A node contact's impulse matrix against a multibody link, as Bullet builds its own
 // (btSoftBodyInternals.h, CollideSDF_RD::DoNode): the link's response to a unit impulse along the
 // contact's normal and two tangents, through the multibody's Jacobian at the node, added to the
-// node's own inverse mass, inverted in the contact's frame; the Jacobians stay with the contact,
-// for the solve to apply its impulses to the multibody with.
-void impulseMatrixOnLink(btSoftBody::DeformableNodeRigidContact& contact, const btMultiBodyLinkCollider& link) {
+// node's own inverse mass, inverted in the contact's frame. The tangents and Jacobians are left in
+// the contact, for the solve to apply its impulses to the multibody with.
+btMatrix3x3 impulseMatrixOnLink(btSoftBody::DeformableNodeRigidContact& contact,
+                                const btMultiBodyLinkCollider& link) {
   const btVector3& normal = contact.m_cti.m_normal;
   contact.t1 = generateUnitOrthogonalVector(normal);
   contact.t2 = btCross(normal, contact.t1);
@@ -87,7 +88,7 @@ void impulseMatrixOnLink(btSoftBody::DeformableNodeRigidContact& contact, const 
                    &contact.jacobianData_normal.m_deltaVelocitiesUnitImpulse[0],
                    &contact.jacobianData_t1.m_deltaVelocitiesUnitImpulse[0],
                    &contact.jacobianData_t2.m_deltaVelocitiesUnitImpulse[0], link.m_multiBody->getNumDofs() + 6);
-  contact.m_c0 = toContact.transpose() * (contact.m_node->m_effectiveMass_inv + linkResponse).inverse() * toContact;
+  return toContact.transpose() * (contact.m_node->m_effectiveMass_inv + linkResponse).inverse() * toContact;
 }
 
 }  // namespace
@@ -154,9 +155,10 @@ void SoftBodySolverImpl::feedToolNodeContacts(btSoftBody& body, Tool& tool) {
       // slipped 140 mm out of the fingers at kDF 2).
       if (!(contact.m_cti.m_offset >= -skin)) continue;
       const btVector3 arm = node.m_x - object.getWorldTransform().getOrigin();
-      contact.m_c0 = ImpulseMatrix(1, node.m_effectiveMass_inv, bodyInverseMass, inverseInertia, arm);
+      contact.m_c0 = link != nullptr
+                         ? impulseMatrixOnLink(contact, *link)
+                         : ImpulseMatrix(1, node.m_effectiveMass_inv, bodyInverseMass, inverseInertia, arm);
       contact.m_c1 = arm;
-      if (link != nullptr) impulseMatrixOnLink(contact, *link);
       contact.m_c2 = node.m_im;
       contact.m_c3 = friction;
       contact.m_c4 = hardness;

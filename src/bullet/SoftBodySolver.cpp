@@ -664,7 +664,13 @@ void SoftBodySolverImpl::rememberSpeeds(bool pressureBodiesOnly) {
   if (!anyGuard) return;
   for (int s = 0; s < m_softBodySet.size(); ++s) {
     const btSoftBody& body = *m_softBodySet[s];
-    if (pressureBodiesOnly && (body.m_cfg.kPR == 0 || !body.isActive())) continue;
+    if (pressureBodiesOnly) {
+      if (body.m_cfg.kPR == 0 || !body.isActive()) continue;
+      // The guard kept the body's speed at the end of the last step (recordPressureSpeeds), which
+      // measureEnergy reads before this: no pass over its nodes.
+      const SoftBodyCache* speeds = findCache(body);
+      if (speeds != nullptr && speeds->speedStep == m_step) continue;
+    }
     btScalar fastestSquared = 0;
     for (int i = 0; i < body.m_nodes.size(); ++i) {
       if (body.m_nodes[i].m_im > 0) fastestSquared = std::max(fastestSquared, body.m_nodes[i].m_v.length2());

@@ -407,7 +407,7 @@ struct TranslationInterval {
 // nor the extents, only where the triangle's lie, so these serve every direction the group is
 // tried along.
 void appendSeparatingAxes(const ToolModel& piece, const Vec3 (&triangle)[3], Real grow,
-                       std::vector<SeparatingAxis>& out) {
+                          std::vector<SeparatingAxis>& out) {
   for (const AxisExtent& planeAxis : piece.planeAxes) {
     if (planeAxis.axis == Vec3{}) continue;
     SeparatingAxis extents;

@@ -120,9 +120,9 @@ struct BulletSettings {
   /// answers with the nearest side: a node carried past a thin tool's mid-plane is pushed out of
   /// the far side. Each node the detection finds heading into the tool grown by the skin, still
   /// outside the tool's surface at the start of the step (behind the grown face it comes through by
-  /// less than the skin), gets a contact on that face's plane, with Bullet's hardness (kKHR or kCHR) and ThinTool's friction (ToolOptions::
-  /// response.friction, on by default; with frictionFromBodies Bullet's coefficient, the soft
-  /// body's kDF times the tool's friction); a node the tool's sweep passed over is left to the last
+  /// less than the skin), gets a contact on that face's plane, with Bullet's hardness (kKHR or
+  /// kCHR) and ThinTool's friction (ToolOptions::response.friction, on by default; with
+  /// frictionFromBodies Bullet's coefficient, the soft body's kDF times the tool's friction); a node the tool's sweep passed over is left to the last
   /// word, whose move carries no velocity, where the contact would push it out as one. Bullet's
   /// face contacts stay Bullet's. On a multibody link the contact acts through the multibody's
   /// Jacobian at the node, as Bullet's own does. Off, the tool keeps Bullet's own node contacts.
