@@ -120,9 +120,8 @@ int main(int argc, char** argv) {
       std::snprintf(deepest, sizeof deepest, deepestMillimetres < 1e6 ? "%.1f" : "%.3g", deepestMillimetres);
       std::printf("| %s | %s | %.3f / %.3f | %.3f | %.1f | %.3f | %d | %s | %.1f | %.2f | %.2f | %s | %.2f |%s\n",
                   graspedBodyName(body), thinTool ? "ThinTool" : "stock", run.rise, run.lift, run.heldRise,
-                  1000 * run.slip,
-                  run.afterRelease, run.crossed, deepest, run.grip, run.liftLoad, run.bodyLoad, reported,
-                  run.wallMilliseconds, run.finite ? "" : " not finite");
+                  1000 * run.slip, run.afterRelease, run.crossed, deepest, run.grip, run.liftLoad, run.bodyLoad,
+                  reported, run.wallMilliseconds, run.finite ? "" : " not finite");
     }
   }
   return 0;
